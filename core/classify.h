@@ -1,0 +1,43 @@
+/*
+ * classify.h: a transfer function sampled at the table's N entries (docs/algorithm.md, section 2): extinction
+ * and colour per entry, the colour weight of each interval between entries, and what the run-length encoder
+ * needs to know which scalar ranges are visible.
+ */
+#ifndef VF_CLASSIFY_H
+#define VF_CLASSIFY_H
+
+#include "volfix.h"
+
+typedef struct vfi_classify {
+    uint32_t n;                    /* entries */
+    uint32_t *tau_q28;             /* [n] extinction per d_ref, Q4.28 */
+    uint32_t *colour_q30;          /* [n * 3] r, g, b, Q.30 (1.0 = 2^30) */
+    uint32_t *weight_q30;          /* [(n - 1) * 3] extinction-weighted mean colour of interval m, Q.30 */
+    uint16_t *visible_before;      /* [n + 1] how many entries below i have tau > 0 */
+    uint16_t entry_of_scalar[256]; /* entry of each 8-bit voxel scalar (the same rounding as samples) */
+} vfi_classify_t;
+
+/* Bytes vfi_classify_alloc takes from an arena for n entries. */
+size_t vfi_classify_bytes(uint32_t n);
+vf_status_t vfi_classify_alloc(vfi_classify_t *cls, uint32_t n, vf_arena_t *arena);
+
+/* Checks the transfer function and fills cls (allocated for its n). */
+vf_status_t vfi_classify(vfi_classify_t *cls, const vf_tf_t *tf);
+
+/* Table entry round(s (N - 1) / 255) of a sample s in Q8.32, exactly: floor(X / (255 2^32)) equals
+ * floor(floor(X / 2^32) / 255), and the second division is by a constant. Exact matters: a sample exactly
+ * between two entries must go the way the reference's goes, or a narrow transfer-function peak flips. */
+static inline uint32_t vfi_entry_of_sample(const vfi_classify_t *cls, uint64_t sample_q32)
+{
+    uint64_t x = sample_q32 * (cls->n - 1) + UINT64_C(255) * (UINT64_C(1) << 31);
+    return (uint32_t)(x >> 32) / 255u;
+}
+
+/* Whether any entry in [lo, hi] of the 8-bit scalar range is visible (has tau > 0). */
+static inline bool vfi_range_visible(const vfi_classify_t *cls, uint32_t scalar_lo, uint32_t scalar_hi)
+{
+    return cls->visible_before[cls->entry_of_scalar[scalar_hi] + 1] !=
+           cls->visible_before[cls->entry_of_scalar[scalar_lo]];
+}
+
+#endif

@@ -1,0 +1,71 @@
+/*
+ * render.h: the renderer's private state, shared by the stage files (renderer.c, composite.c, warp.c).
+ *
+ * Everything lives in the caller's arena, in this order:
+ *   [renderer | slices x3 | classification | table scratch | tables | intermediate image] mark [run lists]
+ * The part before the mark depends only on the volume's size and the parameters and is reserved once; the run
+ * lists depend on the transfer function and are rebuilt after rewinding to the mark.
+ */
+#ifndef VF_RENDER_H
+#define VF_RENDER_H
+
+#include "classify.h"
+#include "runs.h"
+#include "slices.h"
+#include "tables.h"
+#include "volfix.h"
+
+/* A pixel stops taking segments once its opacity reaches 1 - 2^-10 (docs/algorithm.md, section 4). */
+#define VFI_OPAQUE_Q15 (VFI_ONE_Q15 - (VFI_ONE_Q15 >> 10))
+
+/* A buffer-slice entry: a sample's table entry and the standard slice it belongs to, so that a sample left over
+ * from an earlier slice is never mistaken for the current one (no clearing between slices is needed). */
+typedef struct vfi_sample {
+    uint16_t entry;
+    uint16_t slice;
+} vfi_sample_t;
+
+#define VFI_NO_SLICE 0xFFFFu
+
+struct vf_renderer {
+    vf_params_t params;
+    vf_volume_t volume;    /* the caller's description; its voxels are read again on a window change */
+    vf_arena_t *arena;
+    size_t runs_mark;      /* arena position where the run lists begin */
+    size_t needed;         /* after VF_ERR_NOMEM: the arena size that would have been enough */
+
+    vfi_layout_t layout[3];
+    uint8_t *slices[3];
+    bool have_window;
+
+    vfi_classify_t cls;
+    bool have_tf;
+    uint32_t tf_generation; /* counts transfer-function changes; the tables remember the one they were built for */
+
+    vfi_runs_t runs[3];
+    bool have_runs;
+
+    vfi_table_scratch_t table_scratch;
+    uint16_t *point_table;  /* [N * 4] r, g, b, a in Q1.15 */
+    uint16_t *preint_table; /* [N * N * 4], preint1 only */
+    bool tables_valid;
+    uint32_t tables_generation, tables_slab_q16;
+
+    vf_factor_t factor;
+    bool have_frame;
+    uint16_t *intermediate;  /* [int_w * int_h * 4] r, g, b, a in Q1.15 */
+    size_t intermediate_max; /* pixels reserved */
+    uint32_t max_int_w;      /* widest intermediate row of any view, for scratch sizing */
+    uint32_t max_ni;         /* widest slice of any principal axis */
+
+    vf_memory_t memory;
+};
+
+/* composite.c */
+vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes);
+size_t vfi_band_scratch_bytes(const vf_renderer_t *r, uint32_t band_rows);
+
+/* warp.c */
+vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint32_t y0, uint32_t y1);
+
+#endif

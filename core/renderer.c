@@ -1,0 +1,297 @@
+/*
+ * renderer.c: the renderer's life (create, window, transfer function) and a frame's script: check, factor,
+ * bring the tables up to date, composite, warp. Memory layout and invariants are in render.h.
+ */
+#include "arena.h"
+#include "render.h"
+
+static vf_status_t check_params(const vf_params_t *p);
+static vf_status_t check_volume(const vf_volume_t *v);
+static size_t intermediate_pixels(const uint32_t dims[3], uint32_t *max_w, uint32_t *max_ni);
+static vf_status_t encode_runs(vf_renderer_t *r);
+static void update_tables(vf_renderer_t *r);
+
+void vf_params_default(vf_params_t *p)
+{
+    if (!p)
+        return;
+    p->mode = VF_MODE_PREINT1;
+    p->table_size = VF_DEFAULT_TABLE;
+    p->background[0] = p->background[1] = p->background[2] = 0;
+}
+
+vf_status_t vf_renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, size_t *bytes)
+{
+    if (!p || !vol || !bytes)
+        return VF_ERR_NULL;
+    vf_status_t s = check_params(p);
+    if (s == VF_OK)
+        s = check_volume(vol);
+    if (s != VF_OK)
+        return s;
+    const uint32_t n = p->table_size;
+    size_t total = VFI_ALIGN + vfi_arena_block(sizeof(vf_renderer_t));
+    for (int a = 0; a < 3; a++)
+        total += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
+    total += vfi_classify_bytes(n) + vfi_table_scratch_bytes(n);
+    total += vfi_arena_block(sizeof(uint16_t) * 4 * n);
+    if (p->mode == VF_MODE_PREINT1)
+        total += vfi_arena_block(sizeof(uint16_t) * 4 * (size_t)n * n);
+    uint32_t w, ni;
+    total += vfi_arena_block(sizeof(uint16_t) * 4 * intermediate_pixels(vol->dims, &w, &ni));
+    *bytes = total;
+    return VF_OK;
+}
+
+vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const vf_volume_t *vol, vf_arena_t *arena)
+{
+    if (!out || !p || !vol || !arena)
+        return VF_ERR_NULL;
+    *out = NULL;
+    size_t needed;
+    vf_status_t s = vf_renderer_bytes(p, vol, &needed);
+    if (s != VF_OK)
+        return s;
+    vf_renderer_t *r = vfi_arena_alloc(arena, sizeof *r);
+    if (!r)
+        return VF_ERR_NOMEM;
+    /* Every field harmless before anything can fail (as Lua's preinit): NULL pointers, nothing valid yet. */
+    *r = (vf_renderer_t){0};
+    r->params = *p;
+    r->volume = *vol;
+    r->arena = arena;
+    r->needed = needed;
+
+    for (int a = 0; a < 3; a++) {
+        vfi_layout(vol->dims, a, &r->layout[a]);
+        r->slices[a] = vfi_arena_alloc(arena, vfi_slices_bytes(vol->dims, a));
+    }
+    const uint32_t n = p->table_size;
+    s = vfi_classify_alloc(&r->cls, n, arena);
+    if (s == VF_OK)
+        s = vfi_table_scratch_alloc(&r->table_scratch, n, arena);
+    r->point_table = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * n);
+    if (p->mode == VF_MODE_PREINT1)
+        r->preint_table = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * (size_t)n * n);
+    r->intermediate_max = intermediate_pixels(vol->dims, &r->max_int_w, &r->max_ni);
+    r->intermediate = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * r->intermediate_max);
+    if (s != VF_OK || !r->slices[0] || !r->slices[1] || !r->slices[2] || !r->point_table ||
+        (p->mode == VF_MODE_PREINT1 && !r->preint_table) || !r->intermediate)
+        return VF_ERR_NOMEM; /* the caller's arena is theirs to reset; *out stays NULL */
+    r->runs_mark = arena->used;
+
+    r->memory.renderer = vfi_arena_block(sizeof *r);
+    for (int a = 0; a < 3; a++)
+        r->memory.slices += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
+    r->memory.classify = vfi_classify_bytes(n);
+    r->memory.tables = vfi_table_scratch_bytes(n) + vfi_arena_block(sizeof(uint16_t) * 4 * n) +
+                       (p->mode == VF_MODE_PREINT1 ? vfi_arena_block(sizeof(uint16_t) * 4 * (size_t)n * n) : 0);
+    r->memory.intermediate = vfi_arena_block(sizeof(uint16_t) * 4 * r->intermediate_max);
+    *out = r;
+    return VF_OK;
+}
+
+vf_status_t vf_renderer_set_window(vf_renderer_t *r, vf_window_t window)
+{
+    if (!r)
+        return VF_ERR_NULL;
+    if (window.lo == window.hi)
+        return VF_ERR_WINDOW;
+    vfi_slices_build(&r->volume, window, r->slices);
+    r->have_window = true;
+    return r->have_tf ? encode_runs(r) : VF_OK;
+}
+
+vf_status_t vf_renderer_set_tf(vf_renderer_t *r, const vf_tf_t *tf)
+{
+    if (!r)
+        return VF_ERR_NULL;
+    vf_status_t s = vfi_classify(&r->cls, tf);
+    if (s != VF_OK)
+        return s; /* checked before anything was written: the previous transfer function stands */
+    r->have_tf = true;
+    r->tf_generation++;
+    return r->have_window ? encode_runs(r) : VF_OK;
+}
+
+size_t vf_renderer_needed_bytes(const vf_renderer_t *r)
+{
+    return r ? r->needed : 0;
+}
+
+void vf_renderer_memory(const vf_renderer_t *r, vf_memory_t *m)
+{
+    if (!r || !m)
+        return;
+    *m = r->memory;
+    m->total = r->arena->used;
+}
+
+const vf_params_t *vf_renderer_params(const vf_renderer_t *r)
+{
+    return r ? &r->params : NULL;
+}
+
+vf_status_t vf_render_begin(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h)
+{
+    if (!r || !view)
+        return VF_ERR_NULL;
+    r->have_frame = false;
+    if (!r->have_window || !r->have_tf || !r->have_runs)
+        return VF_ERR_STATE;
+    vf_status_t s = vf_factor(&r->factor, &r->volume, view, out_w, out_h);
+    if (s != VF_OK)
+        return s;
+    update_tables(r);
+    r->have_frame = true;
+    return VF_OK;
+}
+
+const vf_factor_t *vf_render_factor(const vf_renderer_t *r)
+{
+    return r && r->have_frame ? &r->factor : NULL;
+}
+
+size_t vf_band_scratch_bytes(const vf_renderer_t *r, uint32_t band_rows)
+{
+    return r ? vfi_band_scratch_bytes(r, band_rows) : 0;
+}
+
+vf_status_t vf_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes)
+{
+    if (!r || !scratch)
+        return VF_ERR_NULL;
+    if (!r->have_frame)
+        return VF_ERR_STATE;
+    if (v0 >= v1 || v1 > r->factor.int_h)
+        return VF_ERR_ARG;
+    return vfi_composite_band(r, v0, v1, scratch, bytes);
+}
+
+vf_status_t vf_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint32_t y0, uint32_t y1)
+{
+    if (!r || !image)
+        return VF_ERR_NULL;
+    if (!r->have_frame)
+        return VF_ERR_STATE;
+    return vfi_warp_band(r, image, y0, y1);
+}
+
+vf_status_t vf_render(vf_renderer_t *r, const vf_view_t *view, const vf_image_t *image, void *scratch, size_t bytes)
+{
+    if (!image)
+        return VF_ERR_NULL;
+    vf_status_t s = vf_render_begin(r, view, image->width, image->height);
+    if (s == VF_OK)
+        s = vf_composite_band(r, 0, r->factor.int_h, scratch, bytes);
+    if (s == VF_OK)
+        s = vf_warp_band(r, image, 0, image->height);
+    return s;
+}
+
+const uint16_t *vf_render_intermediate(const vf_renderer_t *r)
+{
+    return r && r->have_frame ? r->intermediate : NULL;
+}
+
+const uint16_t *vf_render_point_table(const vf_renderer_t *r)
+{
+    return r && r->tables_valid && r->params.mode == VF_MODE_POINT ? r->point_table : NULL;
+}
+
+const uint16_t *vf_render_preint_table(const vf_renderer_t *r)
+{
+    return r && r->tables_valid ? r->preint_table : NULL;
+}
+
+static vf_status_t check_params(const vf_params_t *p)
+{
+    if ((unsigned)p->mode >= VF_MODE_COUNT)
+        return VF_ERR_ARG;
+    if (p->table_size < VF_MIN_TABLE || p->table_size > VF_MAX_TABLE)
+        return VF_ERR_ARG;
+    return VF_OK;
+}
+
+static vf_status_t check_volume(const vf_volume_t *v)
+{
+    if (!v->voxels)
+        return VF_ERR_NULL;
+    if ((unsigned)v->type > VF_VOXEL_I16)
+        return VF_ERR_ARG;
+    uint32_t sp_min = UINT32_MAX, sp_max = 0;
+    for (int a = 0; a < 3; a++) {
+        if (v->dims[a] < 2 || v->dims[a] > VF_MAX_DIM)
+            return VF_ERR_DIMS;
+        if (v->spacing_q16[a] == 0)
+            return VF_ERR_SPACING;
+        sp_min = v->spacing_q16[a] < sp_min ? v->spacing_q16[a] : sp_min;
+        sp_max = v->spacing_q16[a] > sp_max ? v->spacing_q16[a] : sp_max;
+    }
+    if ((uint64_t)sp_max > (uint64_t)sp_min * VF_MAX_ANISOTROPY)
+        return VF_ERR_SPACING;
+    /* three padded copies must be addressable */
+    uint64_t voxels = (uint64_t)(v->dims[0] + 1) * (v->dims[1] + 1) * (v->dims[2] + 1);
+    if (voxels > SIZE_MAX / 4)
+        return VF_ERR_DIMS;
+    return VF_OK;
+}
+
+/* The intermediate image is at most (n_i + n_k - 1) x (n_j + n_k - 1) for any view, as |shear| <= 1. */
+static size_t intermediate_pixels(const uint32_t dims[3], uint32_t *max_w, uint32_t *max_ni)
+{
+    size_t most = 0;
+    *max_w = 0;
+    *max_ni = 0;
+    for (int k = 0; k < 3; k++) {
+        vfi_layout_t l;
+        vfi_layout(dims, k, &l);
+        size_t w = l.ni + l.nk - 1, h = l.nj + l.nk - 1;
+        most = w * h > most ? w * h : most;
+        *max_w = (uint32_t)w > *max_w ? (uint32_t)w : *max_w;
+        *max_ni = l.ni > *max_ni ? l.ni : *max_ni;
+    }
+    return most;
+}
+
+/* Rewind to the mark and run-length encode all three copies; on VF_ERR_NOMEM record what would have fitted. */
+static vf_status_t encode_runs(vf_renderer_t *r)
+{
+    vf_arena_t *arena = r->arena;
+    r->have_runs = false;
+    vfi_arena_rewind(arena, r->runs_mark);
+    size_t values[3], total = 0;
+    for (int a = 0; a < 3; a++) {
+        vfi_runs_t counting = {0};
+        values[a] = vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, &counting);
+        total += vfi_runs_index_bytes(&r->layout[a]) + vfi_arena_block(sizeof(uint16_t) * values[a]);
+    }
+    r->needed = r->runs_mark + total + VFI_ALIGN;
+    r->memory.runs = total;
+    for (int a = 0; a < 3; a++) {
+        vfi_runs_t *runs = &r->runs[a];
+        runs->row_start = vfi_arena_alloc(arena, vfi_runs_index_bytes(&r->layout[a]));
+        /* at least one value, so that an all-invisible volume still has a non-NULL array to fill */
+        runs->pairs = vfi_arena_alloc(arena, sizeof(uint16_t) * (values[a] ? values[a] : 1));
+        if (!runs->row_start || !runs->pairs)
+            return VF_ERR_NOMEM;
+        vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, runs);
+    }
+    r->have_runs = true;
+    return VF_OK;
+}
+
+/* The tables depend on the transfer function and on the slab length, which changes with the view. */
+static void update_tables(vf_renderer_t *r)
+{
+    uint32_t slab = r->factor.slab_q16;
+    if (r->tables_valid && r->tables_generation == r->tf_generation && r->tables_slab_q16 == slab)
+        return;
+    if (r->params.mode == VF_MODE_POINT)
+        vfi_point_table(&r->cls, slab, r->point_table);
+    else
+        vfi_preint_table_bruteforce(&r->cls, slab, &r->table_scratch, r->preint_table);
+    r->tables_valid = true;
+    r->tables_generation = r->tf_generation;
+    r->tables_slab_q16 = slab;
+}

@@ -1,0 +1,28 @@
+/*
+ * slices.h: the volume as 8-bit scalars (after the window), stored three times, once per principal axis, in
+ * standard object order: for principal axis k, slice k holds n_j + 1 rows of n_i + 1 scalars. The extra column
+ * and row repeat the last ones, so that a bilinear footprint at x = n_i - 1 (weight 0 on the neighbour) never
+ * reads outside.
+ */
+#ifndef VF_SLICES_H
+#define VF_SLICES_H
+
+#include "volfix.h"
+
+typedef struct vfi_layout {
+    uint32_t ni, nj, nk;       /* dimensions along the standard axes */
+    uint32_t row, slice;       /* bytes from one row (slice) to the next: n_i + 1, (n_i + 1)(n_j + 1) */
+    int i_axis, j_axis;
+} vfi_layout_t;
+
+void vfi_layout(const uint32_t dims[3], int k_axis, vfi_layout_t *layout);
+size_t vfi_slices_bytes(const uint32_t dims[3], int k_axis);
+
+/* Window the volume into the copy for principal axis 2 (z, the file order), then transpose it into the copies
+ * for axes 0 and 1. copies[a] must hold vfi_slices_bytes(dims, a). */
+void vfi_slices_build(const vf_volume_t *volume, vf_window_t window, uint8_t *const copies[3]);
+
+/* The window's mapping of one raw value (docs/algorithm.md, section 1). */
+uint8_t vfi_window_scalar(int32_t raw, vf_window_t window);
+
+#endif

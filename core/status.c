@@ -1,0 +1,42 @@
+/* status.c: a text for every status, and the names of modes and formats. */
+#include "volfix.h"
+
+static const char *const status_texts[VF_STATUS_COUNT] = {
+    [VF_OK] = "ok",
+    [VF_ERR_NULL] = "a required pointer is NULL",
+    [VF_ERR_ARG] = "an argument is out of range",
+    [VF_ERR_DIMS] = "volume dimensions must each be 2..VF_MAX_DIM",
+    [VF_ERR_SPACING] = "voxel spacings must be positive and within VF_MAX_ANISOTROPY of each other",
+    [VF_ERR_WINDOW] = "the window is empty (lo == hi)",
+    [VF_ERR_TF] = "the transfer function has no points, too many, or decreasing scalars",
+    [VF_ERR_NOMEM] = "the arena or scratch buffer is too small",
+    [VF_ERR_STATE] = "called out of order (set a window and a transfer function, then begin a frame)",
+    [VF_ERR_IMAGE] = "the output image is empty, has an unknown format, a short stride or the wrong size",
+    [VF_ERR_UNSUPPORTED] = "not supported by this build",
+};
+
+const char *vf_status_text(vf_status_t status)
+{
+    if ((unsigned)status >= VF_STATUS_COUNT)
+        return "unknown status";
+    return status_texts[status];
+}
+
+const char *vf_mode_name(vf_mode_t mode)
+{
+    switch (mode) {
+    case VF_MODE_POINT: return "point";
+    case VF_MODE_PREINT1: return "preint1";
+    default: return "unknown";
+    }
+}
+
+uint32_t vf_format_bytes(vf_format_t format)
+{
+    switch (format) {
+    case VF_FORMAT_RGB888: return 3;
+    case VF_FORMAT_RGB565: return 2;
+    case VF_FORMAT_XRGB8888: return 4;
+    default: return 0;
+    }
+}

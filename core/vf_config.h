@@ -1,0 +1,39 @@
+/*
+ * vf_config.h: every build-time setting of the core in one place (as Lua's luaconf.h). Each has a default that
+ * a build may override with -D.
+ */
+#ifndef VF_CONFIG_H
+#define VF_CONFIG_H
+
+/* Largest volume dimension along any axis. Run lengths and buffer tags are 16-bit, so at most 65535. */
+#ifndef VF_MAX_DIM
+#define VF_MAX_DIM 4096
+#endif
+
+/* Table sizes a renderer accepts, and the default. */
+#ifndef VF_MIN_TABLE
+#define VF_MIN_TABLE 2
+#endif
+#ifndef VF_MAX_TABLE
+#define VF_MAX_TABLE 1024
+#endif
+#ifndef VF_DEFAULT_TABLE
+#define VF_DEFAULT_TABLE 256
+#endif
+
+/* Most control points in a transfer function. */
+#ifndef VF_MAX_TF_POINTS
+#define VF_MAX_TF_POINTS 1024
+#endif
+
+/* Largest ratio of the largest to the smallest voxel spacing. */
+#ifndef VF_MAX_ANISOTROPY
+#define VF_MAX_ANISOTROPY 64
+#endif
+
+/* Largest output image side. */
+#ifndef VF_MAX_IMAGE
+#define VF_MAX_IMAGE 8192
+#endif
+
+#endif /* VF_CONFIG_H */

@@ -1,0 +1,224 @@
+/*
+ * volfix.h: the public interface of the volfix core.
+ *
+ * A fixed-point, pre-integrated shear-warp volume renderer in freestanding C99. The core owns no memory and
+ * has no mutable globals: the caller hands in an arena (a buffer it owns), every fallible call returns a
+ * vf_status_t, and nothing prints or aborts. docs/algorithm.md defines every pixel this code produces.
+ *
+ * A frame's path (DESIGN.md):
+ *   vf_renderer_create     once per volume and parameter set (reserves all fixed-size memory)
+ *   vf_renderer_set_window when the window changes: the volume is resampled to 8-bit slices, one copy per axis
+ *   vf_renderer_set_tf     when the transfer function changes: classification and run-length encoding
+ *   vf_render_begin        per frame: factor the view; rebuild the tables if the slab length changed
+ *   vf_composite_band      per band of intermediate rows (threads may run bands at once)
+ *   vf_warp_band           per band of output rows (threads may run bands at once)
+ * vf_render() runs the last three on one thread.
+ */
+#ifndef VOLFIX_H
+#define VOLFIX_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "vf_config.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* Status */
+
+typedef enum vf_status {
+    VF_OK = 0,
+    VF_ERR_NULL,        /* a required pointer argument is NULL */
+    VF_ERR_ARG,         /* an argument is out of its documented range */
+    VF_ERR_DIMS,        /* volume dimensions outside 2..VF_MAX_DIM, or the volume is too large */
+    VF_ERR_SPACING,     /* a spacing is zero, or the spacings differ by more than VF_MAX_ANISOTROPY */
+    VF_ERR_WINDOW,      /* window with lo == hi */
+    VF_ERR_TF,          /* transfer function with no points or with decreasing scalars */
+    VF_ERR_NOMEM,       /* the arena (or band scratch) is too small; see vf_renderer_needed_bytes */
+    VF_ERR_STATE,       /* called out of order (for example a frame before a window and transfer function) */
+    VF_ERR_IMAGE,       /* output image: zero size, stride too small, unknown format, size differs from begin */
+    VF_ERR_UNSUPPORTED, /* a valid request this build does not implement */
+    VF_STATUS_COUNT
+} vf_status_t;
+
+/* A one-line text for a status; never NULL. */
+const char *vf_status_text(vf_status_t status);
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* Memory: an arena over a buffer the caller owns. Allocation only moves a cursor; nothing is freed singly. */
+
+typedef struct vf_arena {
+    unsigned char *base;
+    size_t size;         /* bytes in the buffer */
+    size_t used;         /* bytes handed out, including alignment padding */
+    size_t peak;         /* high-water mark of used */
+    uint32_t allocs;     /* allocations made */
+    uint32_t fail_after; /* fault injection for tests: allocation number fail_after+1 fails (0: never) */
+} vf_arena_t;
+
+void vf_arena_init(vf_arena_t *arena, void *buffer, size_t size);
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* Inputs */
+
+typedef enum vf_voxel { VF_VOXEL_U8, VF_VOXEL_I8, VF_VOXEL_U16, VF_VOXEL_I16 } vf_voxel_t;
+
+/* A volume the caller owns; it must outlive the renderer that uses it (window changes read it again). */
+typedef struct vf_volume {
+    uint32_t dims[3];        /* x, y, z voxels, each 2..VF_MAX_DIM */
+    uint32_t spacing_q16[3]; /* voxel spacing, Q16.16 in any physical unit; only ratios matter */
+    vf_voxel_t type;
+    const void *voxels;      /* x fastest, then y, then z, native byte order */
+} vf_volume_t;
+
+/* Raw voxel values lo..hi map linearly to the scalar domain 0..255 (clamped); hi < lo maps descending. */
+typedef struct vf_window {
+    int32_t lo, hi;
+} vf_window_t;
+
+/* Transfer-function control point: scalar in the windowed domain, Q8.8 (0..255); colour and opacity per unit
+ * length (one voxel of the smallest spacing) as unorm16 (65535 = 1.0). Piecewise linear between points. */
+typedef struct vf_tf_point {
+    uint16_t scalar_q8;
+    uint16_t r, g, b, a;
+} vf_tf_point_t;
+
+typedef struct vf_tf {
+    const vf_tf_point_t *points; /* scalar non-decreasing */
+    uint32_t count;              /* 1..VF_MAX_TF_POINTS */
+} vf_tf_t;
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* Parameters, fixed for the life of a renderer */
+
+typedef enum vf_mode {
+    VF_MODE_POINT,   /* order 0: point-sampled post-classification, one table entry per slice sample */
+    VF_MODE_PREINT1, /* order 1: pre-integrated slabs, one 2D table entry per (front, back) sample pair */
+    VF_MODE_COUNT
+} vf_mode_t;
+
+typedef struct vf_params {
+    vf_mode_t mode;
+    uint32_t table_size;     /* N table entries over the scalar domain, VF_MIN_TABLE..VF_MAX_TABLE (256) */
+    uint16_t background[3];  /* unorm16 RGB behind the volume (black) */
+} vf_params_t;
+
+void vf_params_default(vf_params_t *params);
+const char *vf_mode_name(vf_mode_t mode);
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* View and output image */
+
+#define VF_BAU_PER_TURN 65536 /* binary angle units: 65536 per full turn */
+
+typedef struct vf_view {
+    int32_t azimuth;   /* about the screen's vertical axis, BAU */
+    int32_t elevation; /* about the screen's horizontal axis, BAU */
+    int32_t roll;      /* about the viewing axis, BAU */
+    uint32_t zoom_q16; /* 1.0 (65536) fits the volume's bounding sphere in the smaller image side */
+} vf_view_t;
+
+typedef enum vf_format {
+    VF_FORMAT_RGB888,   /* bytes R, G, B */
+    VF_FORMAT_RGB565,   /* little-endian 16-bit rrrrrggggggbbbbb */
+    VF_FORMAT_XRGB8888, /* little-endian 32-bit 0xffRRGGBB (bytes B, G, R, 0xff), DRM's XRGB8888 */
+    VF_FORMAT_COUNT
+} vf_format_t;
+
+typedef struct vf_image {
+    void *pixels;
+    uint32_t width, height;
+    uint32_t stride;    /* bytes from one row to the next */
+    vf_format_t format;
+} vf_image_t;
+
+uint32_t vf_format_bytes(vf_format_t format); /* bytes per pixel, 0 for an unknown format */
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* The shear-warp factorisation of a view (docs/algorithm.md, section 3): the only thing later stages use. */
+
+typedef struct vf_factor {
+    uint8_t k_axis, i_axis, j_axis; /* object axes (0 x, 1 y, 2 z) of the standard object axes k, i, j */
+    bool k_flip;                    /* slice k of standard space is object slice n_k - 1 - k */
+    uint32_t ni, nj, nk;            /* volume dimensions along i, j, k */
+    int64_t si_q32, sj_q32;         /* shear: intermediate pixels per slice, Q32.32 */
+    int64_t ti_q32, tj_q32;         /* translation of slice 0, Q32.32 */
+    uint32_t int_w, int_h;          /* intermediate image size */
+    uint32_t slab_q16;              /* distance between slices along a ray, units of d_ref, Q16.16 */
+    uint32_t out_w, out_h;          /* final image size */
+    int64_t u0_q32, v0_q32;         /* intermediate point seen by final pixel (0, 0), Q32.32 */
+    int64_t du_dx_q32, dv_dx_q32;   /* change per final pixel to the right */
+    int64_t du_dy_q32, dv_dy_q32;   /* change per final pixel down */
+} vf_factor_t;
+
+vf_status_t vf_factor(vf_factor_t *factor, const vf_volume_t *volume, const vf_view_t *view, uint32_t out_w,
+                      uint32_t out_h);
+
+/* Offset of slice k in the intermediate image, Q16.16 (snapped to the 2^-16 grid, docs/algorithm.md). */
+int32_t vf_factor_offset_u(const vf_factor_t *factor, uint32_t k);
+int32_t vf_factor_offset_v(const vf_factor_t *factor, uint32_t k);
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* The renderer */
+
+typedef struct vf_renderer vf_renderer_t; /* lives inside the caller's arena */
+
+/* What the renderer holds, in bytes (for memory reports and sizing). */
+typedef struct vf_memory {
+    size_t renderer;     /* the renderer's own struct */
+    size_t slices;       /* 8-bit scalar slices, one copy per principal axis */
+    size_t runs;         /* run-length encoding of the visible cells, per principal axis */
+    size_t classify;     /* per-entry extinction and colour, visibility prefix */
+    size_t tables;       /* point table and (preint1) the 2D table */
+    size_t intermediate; /* the intermediate image at its largest */
+    size_t total;        /* arena bytes in use, alignment included */
+} vf_memory_t;
+
+/* Arena bytes that vf_renderer_create reserves for this volume and these parameters (everything but the run
+ * lists, whose size depends on the transfer function: see vf_renderer_needed_bytes). */
+vf_status_t vf_renderer_bytes(const vf_params_t *params, const vf_volume_t *volume, size_t *bytes);
+
+vf_status_t vf_renderer_create(vf_renderer_t **renderer, const vf_params_t *params, const vf_volume_t *volume,
+                               vf_arena_t *arena);
+vf_status_t vf_renderer_set_window(vf_renderer_t *renderer, vf_window_t window);
+vf_status_t vf_renderer_set_tf(vf_renderer_t *renderer, const vf_tf_t *tf);
+
+/* After VF_ERR_NOMEM from vf_renderer_set_tf: the arena size that would have been enough for everything. */
+size_t vf_renderer_needed_bytes(const vf_renderer_t *renderer);
+void vf_renderer_memory(const vf_renderer_t *renderer, vf_memory_t *memory);
+const vf_params_t *vf_renderer_params(const vf_renderer_t *renderer);
+
+/* Per frame. Begin factors the view and rebuilds the tables when the slab length changed. */
+vf_status_t vf_render_begin(vf_renderer_t *renderer, const vf_view_t *view, uint32_t out_w, uint32_t out_h);
+const vf_factor_t *vf_render_factor(const vf_renderer_t *renderer);
+
+/* Bytes of scratch a band of band_rows intermediate rows needs (buffer slices and skip links). */
+size_t vf_band_scratch_bytes(const vf_renderer_t *renderer, uint32_t band_rows);
+
+/* Composite intermediate rows [v0, v1) (0 <= v0 < v1 <= factor->int_h). Bands may run concurrently on
+ * different threads, each with its own scratch; every band must finish before any warp band starts. */
+vf_status_t vf_composite_band(const vf_renderer_t *renderer, uint32_t v0, uint32_t v1, void *scratch,
+                              size_t scratch_bytes);
+
+/* Warp final rows [y0, y1) into image (whose size must equal the size given to vf_render_begin). */
+vf_status_t vf_warp_band(const vf_renderer_t *renderer, const vf_image_t *image, uint32_t y0, uint32_t y1);
+
+/* The whole frame on one thread: begin, composite all rows, warp all rows. */
+vf_status_t vf_render(vf_renderer_t *renderer, const vf_view_t *view, const vf_image_t *image, void *scratch,
+                      size_t scratch_bytes);
+
+/* Read-only access for tests and tools: the current intermediate image (Q1.15 RGBA, int_w * int_h pixels) and
+ * tables (Q1.15 r, g, b, a per entry, colour premultiplied; the 2D table is indexed [front * N + back]). NULL before they exist. */
+const uint16_t *vf_render_intermediate(const vf_renderer_t *renderer);
+const uint16_t *vf_render_point_table(const vf_renderer_t *renderer);
+const uint16_t *vf_render_preint_table(const vf_renderer_t *renderer);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* VOLFIX_H */

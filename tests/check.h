@@ -1,0 +1,64 @@
+/*
+ * check.h: the smallest test framework that does the job. A test file lists its cases in a table and calls
+ * check_main; each case prints "ok - suite/name" or "not ok - suite/name: file:line: what failed", and the
+ * runner (tests/run.sh) counts those lines.
+ */
+#ifndef CHECK_H
+#define CHECK_H
+
+#include <stdio.h>
+#include <stdint.h>
+
+typedef struct check_case {
+    const char *name;
+    void (*fn)(void);
+} check_case_t;
+
+/* Set by the CHECK macros when the running case fails. */
+extern int check_failed;
+void check_fail(const char *file, int line, const char *fmt, ...);
+int check_main(const char *suite, const check_case_t *cases, int count, int argc, char **argv);
+
+#define CHECK_CASES(...) static const check_case_t check_cases_[] = {__VA_ARGS__}
+#define CHECK_RUN(suite) \
+    int main(int argc, char **argv) \
+    { \
+        return check_main(suite, check_cases_, (int)(sizeof check_cases_ / sizeof check_cases_[0]), argc, argv); \
+    }
+
+#define CHECK(cond) \
+    do { \
+        if (!(cond)) { \
+            check_fail(__FILE__, __LINE__, "%s", #cond); \
+            return; \
+        } \
+    } while (0)
+
+#define CHECK_MSG(cond, ...) \
+    do { \
+        if (!(cond)) { \
+            check_fail(__FILE__, __LINE__, __VA_ARGS__); \
+            return; \
+        } \
+    } while (0)
+
+#define CHECK_EQ(a, b) \
+    do { \
+        long long check_a_ = (long long)(a), check_b_ = (long long)(b); \
+        if (check_a_ != check_b_) { \
+            check_fail(__FILE__, __LINE__, "%s == %s (%lld != %lld)", #a, #b, check_a_, check_b_); \
+            return; \
+        } \
+    } while (0)
+
+#define CHECK_NEAR(a, b, tol) \
+    do { \
+        double check_a_ = (double)(a), check_b_ = (double)(b), check_t_ = (double)(tol); \
+        if (!(check_a_ - check_b_ <= check_t_ && check_b_ - check_a_ <= check_t_)) { \
+            check_fail(__FILE__, __LINE__, "%s ~ %s (%.9g vs %.9g, tolerance %.3g)", #a, #b, check_a_, check_b_, \
+                       check_t_); \
+            return; \
+        } \
+    } while (0)
+
+#endif
