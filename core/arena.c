@@ -48,3 +48,10 @@ void vfi_arena_rewind(vf_arena_t *arena, size_t mark)
     if (mark < arena->used)
         arena->used = mark;
 }
+
+void vfi_zero(void *p, size_t bytes)
+{
+    unsigned char *b = p;
+    for (size_t i = 0; i < bytes; i++)
+        b[i] = 0;
+}

@@ -12,6 +12,10 @@ void *vfi_arena_alloc(vf_arena_t *arena, size_t bytes);
 /* Bytes an allocation of `bytes` takes, padding included, so that size queries match what allocation uses. */
 size_t vfi_arena_block(size_t bytes);
 
+/* Set bytes to zero. (A struct assignment from {0} would let the compiler call memset, which a freestanding
+ * core does not have.) */
+void vfi_zero(void *p, size_t bytes);
+
 /* Give back everything allocated after `mark` (a value of arena->used taken earlier). */
 void vfi_arena_rewind(vf_arena_t *arena, size_t mark);
 

@@ -12,6 +12,7 @@
  *   next      [rows][int_w + 1]    skip links: next[u] == u for an open pixel, else a pixel further right
  *   buffers   2 x [rows][n_i + 1]  buffer slices of the current front and back slice (preint1 only)
  */
+#include "arena.h"
 #include "render.h"
 
 #define SCRATCH_ALIGN 16
@@ -94,7 +95,8 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     for (size_t e = 0; e < (size_t)rows * width * 4; e++)
         band[e] = 0;
 
-    row_job_t job = {0};
+    row_job_t job;
+    vfi_zero(&job, sizeof job);
     job.cls = &r->cls;
     job.n = r->cls.n;
     job.row = l->row;

@@ -56,7 +56,7 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     if (!r)
         return VF_ERR_NOMEM;
     /* Every field harmless before anything can fail (as Lua's preinit): NULL pointers, nothing valid yet. */
-    *r = (vf_renderer_t){0};
+    vfi_zero(r, sizeof *r);
     r->params = *p;
     r->volume = *vol;
     r->arena = arena;
@@ -262,7 +262,7 @@ static vf_status_t encode_runs(vf_renderer_t *r)
     vfi_arena_rewind(arena, r->runs_mark);
     size_t values[3], total = 0;
     for (int a = 0; a < 3; a++) {
-        vfi_runs_t counting = {0};
+        vfi_runs_t counting = {NULL, NULL, 0}; /* no pairs array: count only */
         values[a] = vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, &counting);
         total += vfi_runs_index_bytes(&r->layout[a]) + vfi_arena_block(sizeof(uint16_t) * values[a]);
     }

@@ -53,7 +53,9 @@ void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, v
         intervals_for_length(cls, length_q28, iv);
         for (uint32_t f = 0; f + r < n; f++) {
             uint32_t b = f + r;
-            accum_t up = {0, 0, 0, 0}, down = {0, 0, 0, 0};
+            accum_t up, down; /* field by field: an aggregate initialiser may become a memset call */
+            up.a = up.r = up.g = up.b = 0;
+            down.a = down.r = down.g = down.b = 0;
             for (uint32_t m = f; m < b; m++) /* front f < back b: intervals f .. b-1 in order */
                 composite_interval(&up, iv + m * 4);
             for (uint32_t m = b; m-- > f;) /* front b > back f: intervals b-1 .. f */
@@ -68,7 +70,8 @@ void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, v
 static void point_entry(const vfi_classify_t *cls, uint32_t i, uint32_t slab_q16, uint16_t *out)
 {
     uint32_t a = opacity_q30(((uint64_t)cls->tau_q28[i] * slab_q16 + (1u << 15)) >> 16);
-    accum_t acc = {a, 0, 0, 0};
+    accum_t acc;
+    acc.a = a;
     acc.r = ((uint64_t)cls->colour_q30[i * 3 + 0] * a + (ONE_Q30 >> 1)) >> 30;
     acc.g = ((uint64_t)cls->colour_q30[i * 3 + 1] * a + (ONE_Q30 >> 1)) >> 30;
     acc.b = ((uint64_t)cls->colour_q30[i * 3 + 2] * a + (ONE_Q30 >> 1)) >> 30;
