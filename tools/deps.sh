@@ -7,7 +7,7 @@ for_what=${1:-run}
 
 need="gcc make pkg-config zlib1g-dev libpng-dev"
 case "$for_what" in
-  test) need="$need gcc-aarch64-linux-gnu valgrind" ;;
+  test) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf valgrind" ;;
 esac
 
 missing=""

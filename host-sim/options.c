@@ -1,0 +1,176 @@
+/* options.c: parse the options volfix-sim's commands share (see options.h). */
+#include "options.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char sim_scene_help[] =
+    "  --preset NAME        built-in transfer function: ramp (default), sharp, ct-bone, ct-skin-bone, mr-brain\n"
+    "  --tf FILE            transfer function file (see README: 'scalar r g b a' per line)\n"
+    "  --mode MODE          point (order 0) or preint1 (order 1, pre-integrated; default)\n"
+    "  --view AZ,EL[,ROLL]  view angles in degrees (default 30,20)\n"
+    "  --zoom Z             1 fits the volume's bounding sphere in the image (default 1)\n"
+    "  --size WxH           output size in pixels (default 512x512)\n"
+    "  --format F           rgb888 (default), rgb565 or xrgb8888\n"
+    "  --window LO,HI       data values mapped to the transfer function's 0..1 (default: 0.5 and 99.5\n"
+    "                       percentiles for 16-bit data, the full range for 8-bit)\n"
+    "  --table-size N       transfer-function table entries, 2..1024 (default 256)\n"
+    "  --threads N          compositing and warping threads (default 1)\n"
+    "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]\n"
+    "                       for raw voxel files (--spacing also overrides a file's own)\n"
+    "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N with NAME marschner-lobb,\n"
+    "shepp-logan or sphere.\n";
+
+static int bad(const char *option, const char *value, const char *expected)
+{
+    fprintf(stderr, "volfix-sim: %s %s: expected %s\n", option, value ? value : "(missing)", expected);
+    return 2;
+}
+
+static int parse_doubles(const char *text, double *out, int min, int max)
+{
+    int n = 0;
+    const char *p = text;
+    while (n < max) {
+        char *end;
+        out[n] = strtod(p, &end);
+        if (end == p)
+            return -1;
+        n++;
+        if (*end == 0)
+            break;
+        if (*end != ',')
+            return -1;
+        p = end + 1;
+    }
+    return n >= min && *p ? n : -1;
+}
+
+int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char *usage)
+{
+    memset(o, 0, sizeof *o);
+    vf_params_default(&o->params);
+    o->azimuth = 30;
+    o->elevation = 20;
+    o->zoom = 1;
+    o->width = o->height = 512;
+    o->format = VF_FORMAT_RGB888;
+    o->threads = 1;
+    o->frames = 90;
+    char err[VFP_ERR_LEN];
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int takes = 1; /* how many arguments this option consumed after itself */
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            fputs(usage, stdout);
+            return 1;
+        } else if (a[0] != '-' && !o->volume && (groups & SIM_OPT_SCENE)) {
+            o->volume = a;
+            takes = 0;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--preset") == 0 && v) {
+            o->preset = v;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--tf") == 0 && v) {
+            o->tf_file = v;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--window") == 0 && v) {
+            o->window = v;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--mode") == 0) {
+            if (v && strcmp(v, "point") == 0)
+                o->params.mode = VF_MODE_POINT;
+            else if (v && strcmp(v, "preint1") == 0)
+                o->params.mode = VF_MODE_PREINT1;
+            else
+                return bad(a, v, "point or preint1");
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--view") == 0) {
+            double d[3] = {0, 0, 0};
+            if (!v || parse_doubles(v, d, 2, 3) < 0)
+                return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees");
+            o->azimuth = d[0];
+            o->elevation = d[1];
+            o->roll = d[2];
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--zoom") == 0) {
+            double z;
+            if (!v || parse_doubles(v, &z, 1, 1) < 0 || !(z >= 1.0 / 256 && z <= 256))
+                return bad(a, v, "a number from 1/256 to 256");
+            o->zoom = z;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--size") == 0) {
+            unsigned w, h;
+            char extra;
+            if (!v || sscanf(v, "%ux%u%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > VF_MAX_IMAGE ||
+                h > VF_MAX_IMAGE)
+                return bad(a, v, "WxH, each 1..8192");
+            o->width = w;
+            o->height = h;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--format") == 0) {
+            if (v && strcmp(v, "rgb888") == 0)
+                o->format = VF_FORMAT_RGB888;
+            else if (v && strcmp(v, "rgb565") == 0)
+                o->format = VF_FORMAT_RGB565;
+            else if (v && strcmp(v, "xrgb8888") == 0)
+                o->format = VF_FORMAT_XRGB8888;
+            else
+                return bad(a, v, "rgb888, rgb565 or xrgb8888");
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--table-size") == 0) {
+            double n;
+            if (!v || parse_doubles(v, &n, 1, 1) < 0 || n != (int)n || n < VF_MIN_TABLE || n > VF_MAX_TABLE)
+                return bad(a, v, "an integer from 2 to 1024");
+            o->params.table_size = (uint32_t)n;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--threads") == 0) {
+            double n;
+            if (!v || parse_doubles(v, &n, 1, 1) < 0 || n != (int)n || n < 1 || n > 16)
+                return bad(a, v, "an integer from 1 to 16");
+            o->threads = (int)n;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--dims") == 0 && v) {
+            if (vfp_parse_dims(v, o->load.dims, err, sizeof err)) {
+                fprintf(stderr, "volfix-sim: --dims: %s\n", err);
+                return 2;
+            }
+            o->load.have_dims = 1;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--type") == 0 && v) {
+            if (vfp_parse_type(v, &o->load.type, err, sizeof err)) {
+                fprintf(stderr, "volfix-sim: --type: %s\n", err);
+                return 2;
+            }
+            o->load.have_type = 1;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--big-endian") == 0) {
+            o->load.big_endian = 1;
+            takes = 0;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--spacing") == 0) {
+            if (!v || parse_doubles(v, o->load.spacing, 3, 3) != 3 || !(o->load.spacing[0] > 0) ||
+                !(o->load.spacing[1] > 0) || !(o->load.spacing[2] > 0))
+                return bad(a, v, "X,Y,Z, three positive numbers");
+            o->load.have_spacing = 1;
+        } else if ((groups & SIM_OPT_OUT) && strcmp(a, "-o") == 0 && v) {
+            o->out = v;
+        } else if ((groups & SIM_OPT_REF) && strcmp(a, "--reference") == 0) {
+            o->reference = 1;
+            takes = 0;
+        } else if ((groups & SIM_OPT_DIFF) && strcmp(a, "--diff") == 0 && v) {
+            o->diff = v;
+        } else if ((groups & SIM_OPT_JSON) && strcmp(a, "--json") == 0) {
+            o->json = 1;
+            takes = 0;
+        } else if ((groups & SIM_OPT_FRAMES) && strcmp(a, "--frames") == 0) {
+            double n;
+            if (!v || parse_doubles(v, &n, 1, 1) < 0 || n != (int)n || n < 1 || n > 100000)
+                return bad(a, v, "a number of frames, 1..100000");
+            o->frames = (int)n;
+        } else if (a[0] == '-' && v == NULL) {
+            fprintf(stderr, "volfix-sim: %s: unknown option or missing value (see --help)\n", a);
+            return 2;
+        } else {
+            fprintf(stderr, "volfix-sim: %s: unknown option or argument (see --help)\n", a);
+            return 2;
+        }
+        i += takes;
+    }
+    if ((groups & SIM_OPT_SCENE) && !o->volume) {
+        fprintf(stderr, "volfix-sim: no volume given (see --help)\n");
+        return 2;
+    }
+    if (o->preset && o->tf_file) {
+        fprintf(stderr, "volfix-sim: give --preset or --tf, not both\n");
+        return 2;
+    }
+    return 0;
+}

@@ -1,0 +1,44 @@
+/* options.h: the command-line options volfix-sim's commands share. */
+#ifndef SIM_OPTIONS_H
+#define SIM_OPTIONS_H
+
+#include "volfix.h"
+#include "volume.h"
+
+typedef struct sim_opts {
+    const char *volume;        /* file or phantom:NAME:N */
+    vfp_load_opts_t load;      /* --dims --type --big-endian --spacing (raw files) */
+    const char *preset;        /* --preset NAME (default ramp) */
+    const char *tf_file;       /* --tf FILE */
+    const char *window;        /* --window LO,HI in data units */
+    vf_params_t params;        /* --mode --table-size */
+    double azimuth, elevation, roll; /* --view AZ,EL[,ROLL] degrees */
+    double zoom;               /* --zoom */
+    uint32_t width, height;    /* --size WxH */
+    vf_format_t format;        /* --format */
+    int threads;               /* --threads */
+    int reference;             /* --reference: render with the double reference */
+    const char *out;           /* -o FILE */
+    const char *diff;          /* --diff FILE */
+    int json;                  /* --json */
+    int frames;                /* --frames (bench) */
+} sim_opts_t;
+
+/* Option groups a command accepts. */
+enum {
+    SIM_OPT_SCENE = 1,   /* volume, transfer function, mode, view, size, format, window, threads */
+    SIM_OPT_OUT = 2,     /* -o */
+    SIM_OPT_REF = 4,     /* --reference */
+    SIM_OPT_DIFF = 8,    /* --diff */
+    SIM_OPT_JSON = 16,   /* --json */
+    SIM_OPT_FRAMES = 32, /* --frames */
+};
+
+/* Parse argv (after the command name). Returns 0, 1 when --help was asked (usage printed), or 2 after printing
+ * a one-line error to stderr. */
+int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char *usage);
+
+/* The scene options' help text, for the commands' usage. */
+extern const char sim_scene_help[];
+
+#endif

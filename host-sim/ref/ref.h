@@ -1,0 +1,130 @@
+/*
+ * ref.h: the double-precision reference renderer, docs/algorithm.md implemented literally.
+ *
+ * It shares no code and no arithmetic with the core (it does not include volfix.h): the difference between its
+ * image and the core's is the core's fixed-point error alone. It skips nothing (no run-length encoding, no skip
+ * links), builds the pre-integrated table by brute force, and keeps every intermediate value in double. The
+ * only quantisations are the ones the spec imposes on both implementations: the 8-bit window, the table's
+ * nearest-entry lookup and the 2^-16 grid of the slice offsets. Callers hand the reference the quantised inputs
+ * the core sees (spacing q / 65536, zoom q / 65536, TF scalar q / 256, colours q / 65535).
+ *
+ * One file per stage (VolPack's shape):
+ *   ref_window.c   section 1: raw voxels to the 8-bit scalar domain
+ *   ref_tables.c   section 2: transfer function, classification, point table, pre-integrated table
+ *   ref_factor.c   section 3: rotation, principal axis, shears, slice offsets, slab length, warp map
+ *   ref_render.c   sections 4 and 5: compositing into the intermediate image, the warp, the whole frame
+ * Every function that returns int (but ref_table_index) returns 0, or -1 on an argument outside the spec's ranges
+ * or when out of memory.
+ */
+#ifndef REF_H
+#define REF_H
+
+#include <stdint.h>
+
+/* A windowed 8-bit scalar volume S[x][y][z], x fastest in memory. spacing: the quantised spacing the core uses
+ * (q / 65536); only ratios matter. Each dimension 2..REF_MAX_DIM, largest spacing <= 64 x smallest. */
+typedef struct ref_volume {
+    int dims[3];
+    double spacing[3];
+    const uint8_t *scalars;
+} ref_volume_t;
+
+/* Transfer-function control point: s in 0..255, r g b and a (opacity per unit length d_ref) in [0, 1]. */
+typedef struct ref_tf_point {
+    double s, r, g, b, a;
+} ref_tf_point_t;
+
+typedef enum ref_mode { REF_MODE_POINT, REF_MODE_PREINT1 } ref_mode_t;
+
+typedef struct ref_params {
+    ref_mode_t mode;
+    int table_size;       /* N, REF_MIN_TABLE..REF_MAX_TABLE */
+    double background[3]; /* RGB in [0, 1] behind the volume */
+} ref_params_t;
+
+typedef struct ref_view {
+    int32_t azimuth, elevation, roll; /* binary angle units, 65536 per turn */
+    double zoom;                      /* > 0; 1 fits the bounding sphere in the smaller image side */
+} ref_view_t;
+
+/* The factorisation of a view (section 3). Axes are object axes: 0 x, 1 y, 2 z. */
+typedef struct ref_factor {
+    int k_axis, i_axis, j_axis; /* principal (slice) axis and the two others in cyclic order */
+    int k_flip;                 /* 1: standard slice k is object slice n_k - 1 - k (the view looks along -k) */
+    int ni, nj, nk;             /* dimensions along i, j, k */
+    double si, sj;              /* shear: intermediate pixels per slice */
+    double ti, tj;              /* translation of slice 0 (before snapping) */
+    double slab;                /* distance between consecutive slices along a ray, units of d_ref */
+    int int_w, int_h;           /* intermediate image: covers every pixel some slice covers */
+    int out_w, out_h;           /* final image */
+    double R[3][3];             /* rotation world -> eye, R = Rz(roll) Rx(elevation) Ry(azimuth) */
+    double Sr[3];               /* relative spacing sp / min(sp) */
+    double dir[3];              /* viewing direction in object space, d_a = R[2][a] / Sr_a */
+    double scale;               /* final pixels per world unit: zoom * min(W, H) / D */
+    /* Warp map, final pixel (px, py) -> intermediate point: u = u0 + du_dx px + du_dy py, v likewise. For
+     * information; ref_warp evaluates the spec's formula per pixel. */
+    double u0, v0, du_dx, dv_dx, du_dy, dv_dy;
+} ref_factor_t;
+
+#define REF_MAX_DIM 4096
+#define REF_MIN_TABLE 2
+#define REF_MAX_TABLE 1024
+#define REF_MAX_TF_POINTS 1024
+#define REF_MAX_ANISOTROPY 64.0
+#define REF_ERT_THRESHOLD (1.0 - 1.0 / 1024.0) /* early ray termination: A >= 1 - 2^-10 */
+
+/* ---- ref_window.c -------------------------------------------------------------------------------------- */
+
+enum { REF_VOXEL_U8, REF_VOXEL_I8, REF_VOXEL_U16, REF_VOXEL_I16 };
+
+/* s = clamp(round((v - lo) * 255 / (hi - lo)), 0, 255) for every voxel (native byte order). lo != hi. */
+int ref_window(const void *raw, int type, const int dims[3], int32_t lo, int32_t hi, uint8_t *out);
+
+/* ---- ref_tables.c -------------------------------------------------------------------------------------- */
+
+/* The transfer function (npoints >= 1) at scalar s: rgba = r, g, b, a. Piecewise linear, constant beyond the ends;
+ * right-continuous at a step (points sharing a scalar: the last of them holds at that scalar and to its right). */
+void ref_tf_eval(const ref_tf_point_t *tf, int npoints, double s, double rgba[4]);
+
+/* Classification of the N entries: tau[i] = -ln(1 - min(a0(s_i), 1 - 2^-16)), rgb[3i..3i+2] = colour. */
+int ref_classify(const ref_tf_point_t *tf, int npoints, int N, double *tau, double *rgb);
+
+/* Point table for slab length d: out[4i..4i+3] = a, r, g, b (premultiplied). */
+int ref_point_table(const ref_tf_point_t *tf, int npoints, int N, double d, double *out);
+
+/* Pre-integrated table for slab length d, brute force O(N^3): out[4 (front N + back) + 0..3] = a, r, g, b. */
+int ref_preint_table(const ref_tf_point_t *tf, int npoints, int N, double d, double *out);
+
+/* The nearest entry idx(s) = round(s (N - 1) / 255) of a real-valued scalar s in [0, 255]. */
+int ref_table_index(double s, int N);
+
+/* ---- ref_factor.c -------------------------------------------------------------------------------------- */
+
+/* sin and cos of an angle in binary angle units (exact 0 and +-1 at multiples of a quarter turn). */
+void ref_sincos(int32_t bau, double *s, double *c);
+
+int ref_factor(const ref_volume_t *vol, const ref_view_t *view, int out_w, int out_h, ref_factor_t *f);
+
+/* Offset (ou_k, ov_k) of standard slice k in the intermediate image, snapped to the 2^-16 grid. */
+void ref_factor_offset(const ref_factor_t *f, int k, double *ou, double *ov);
+
+/* The intermediate point (u, v) that final pixel (px, py) sees (section 3, "Warp"). */
+void ref_factor_warp(const ref_factor_t *f, double px, double py, double *u, double *v);
+
+/* ---- ref_render.c -------------------------------------------------------------------------------------- */
+
+/* Composite every slice (point: table is the N x 4 point table) or slab (preint1: the N x N x 4 table) into
+ * the intermediate image inter[4 (v int_w + u) + 0..3] = premultiplied R, G, B and opacity A. */
+int ref_composite(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, int N, const double *table,
+                  double *inter);
+
+/* Resample the intermediate image bilinearly (outside: transparent) onto the final image:
+ * rgb[3 (py out_w + px) + c] = C + (1 - A) background[c]. */
+void ref_warp(const ref_factor_t *f, const double *inter, const double background[3], double *rgb);
+
+/* The whole frame: factor, tables for the slab length, composite, warp. rgb: out_w * out_h * 3 in [0, 1].
+ * factor_out may be NULL. */
+int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const ref_params_t *p,
+               const ref_view_t *view, int out_w, int out_h, double *rgb, ref_factor_t *factor_out);
+
+#endif /* REF_H */

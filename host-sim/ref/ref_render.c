@@ -1,0 +1,154 @@
+/* ref_render.c: compositing into the intermediate image, the warp, and the whole frame (sections 4 and 5). */
+#include "ref/ref.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* The volume's scalars in standard order: std[(k nj + j) ni + i], slice 0 the front one. */
+static uint8_t *standard_slices(const ref_volume_t *vol, const ref_factor_t *f)
+{
+    size_t ni = (size_t)f->ni, nj = (size_t)f->nj, nk = (size_t)f->nk;
+    uint8_t *std = malloc(ni * nj * nk);
+    if (!std)
+        return NULL;
+    size_t stride[3] = {1, (size_t)vol->dims[0], (size_t)vol->dims[0] * (size_t)vol->dims[1]};
+    for (size_t k = 0; k < nk; k++) {
+        size_t kobj = f->k_flip ? nk - 1 - k : k;
+        for (size_t j = 0; j < nj; j++)
+            for (size_t i = 0; i < ni; i++)
+                std[(k * nj + j) * ni + i] =
+                    vol->scalars[i * stride[f->i_axis] + j * stride[f->j_axis] + kobj * stride[f->k_axis]];
+    }
+    return std;
+}
+
+/* Bilinear sample of an ni-wide slice at an inside position (x, y); a neighbour beyond the last voxel has weight
+ * 0 and is not read. With x, y on the 2^-16 grid every product and sum here is exact in double. */
+static double sample(const uint8_t *slice, int ni, double x, double y)
+{
+    double x0 = floor(x), y0 = floor(y), fx = x - x0, fy = y - y0;
+    const uint8_t *p = slice + (size_t)y0 * (size_t)ni + (size_t)x0;
+    double row0 = fx > 0 ? (1 - fx) * p[0] + fx * p[1] : p[0];
+    if (!(fy > 0))
+        return row0;
+    p += ni;
+    double row1 = fx > 0 ? (1 - fx) * p[0] + fx * p[1] : p[0];
+    return (1 - fy) * row0 + fy * row1;
+}
+
+/* Front to back: C += (1 - A) C_seg, A += (1 - A) a_seg. pix: R, G, B, A; seg: a, r, g, b. */
+static void composite(double *pix, const double *seg)
+{
+    double t = 1 - pix[3];
+    pix[0] += t * seg[1];
+    pix[1] += t * seg[2];
+    pix[2] += t * seg[3];
+    pix[3] += t * seg[0];
+}
+
+/* Integer pixels u with 0 <= u - ou <= n - 1, clipped to the image (a no-op by construction of int_w/int_h). */
+static void covered(double ou, int n, int size, int *lo, int *hi)
+{
+    double a = ceil(ou), b = floor(ou + (n - 1));
+    *lo = a < 0 ? 0 : (int)a;
+    *hi = b > size - 1 ? size - 1 : (int)b;
+}
+
+int ref_composite(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, int N, const double *table,
+                  double *inter)
+{
+    if (!vol || !vol->scalars || !f || !table || !inter || N < REF_MIN_TABLE || N > REF_MAX_TABLE ||
+        (mode != REF_MODE_POINT && mode != REF_MODE_PREINT1))
+        return -1;
+    uint8_t *std = standard_slices(vol, f);
+    if (!std)
+        return -1;
+    size_t slice_size = (size_t)f->ni * (size_t)f->nj;
+    for (size_t n = 0; n < 4 * (size_t)f->int_w * (size_t)f->int_h; n++)
+        inter[n] = 0;
+
+    /* point: segment k is slice k. preint1: segment k is the slab between slices k and k + 1. */
+    int segments = mode == REF_MODE_POINT ? f->nk : f->nk - 1;
+    for (int k = 0; k < segments; k++) {
+        int last = mode == REF_MODE_POINT ? k : k + 1; /* the pixels must be inside slices k..last */
+        int u_lo = 0, u_hi = f->int_w - 1, v_lo = 0, v_hi = f->int_h - 1;
+        double ou[2], ov[2];
+        for (int q = 0; q <= last - k; q++) {
+            int a, b;
+            ref_factor_offset(f, k + q, &ou[q], &ov[q]);
+            covered(ou[q], f->ni, f->int_w, &a, &b);
+            u_lo = a > u_lo ? a : u_lo;
+            u_hi = b < u_hi ? b : u_hi;
+            covered(ov[q], f->nj, f->int_h, &a, &b);
+            v_lo = a > v_lo ? a : v_lo;
+            v_hi = b < v_hi ? b : v_hi;
+        }
+        const uint8_t *front = std + (size_t)k * slice_size, *back = front + slice_size;
+        for (int v = v_lo; v <= v_hi; v++) {
+            for (int u = u_lo; u <= u_hi; u++) {
+                double *pix = inter + 4 * ((size_t)v * (size_t)f->int_w + (size_t)u);
+                if (pix[3] >= REF_ERT_THRESHOLD)
+                    continue; /* early ray termination: no further segments */
+                size_t entry = (size_t)ref_table_index(sample(front, f->ni, u - ou[0], v - ov[0]), N);
+                if (mode == REF_MODE_PREINT1)
+                    entry = entry * (size_t)N +
+                            (size_t)ref_table_index(sample(back, f->ni, u - ou[1], v - ov[1]), N);
+                composite(pix, table + 4 * entry);
+            }
+        }
+    }
+    free(std);
+    return 0;
+}
+
+void ref_warp(const ref_factor_t *f, const double *inter, const double background[3], double *rgb)
+{
+    for (int py = 0; py < f->out_h; py++) {
+        for (int px = 0; px < f->out_w; px++) {
+            double u, v, acc[4] = {0, 0, 0, 0};
+            ref_factor_warp(f, px, py, &u, &v);
+            if (u > -1 && v > -1 && u < f->int_w && v < f->int_h) {
+                double u0 = floor(u), v0 = floor(v), fu = u - u0, fv = v - v0;
+                for (int n = 0; n < 4; n++) {
+                    int x = (int)u0 + (n & 1), y = (int)v0 + (n >> 1);
+                    double w = ((n & 1) ? fu : 1 - fu) * ((n >> 1) ? fv : 1 - fv);
+                    if (x < 0 || y < 0 || x >= f->int_w || y >= f->int_h || w == 0)
+                        continue; /* outside the intermediate image: transparent black */
+                    const double *pix = inter + 4 * ((size_t)y * (size_t)f->int_w + (size_t)x);
+                    for (int c = 0; c < 4; c++)
+                        acc[c] += w * pix[c];
+                }
+            }
+            double *out = rgb + 3 * ((size_t)py * (size_t)f->out_w + (size_t)px);
+            for (int c = 0; c < 3; c++)
+                out[c] = acc[c] + (1 - acc[3]) * background[c];
+        }
+    }
+}
+
+int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const ref_params_t *p,
+               const ref_view_t *view, int out_w, int out_h, double *rgb, ref_factor_t *factor_out)
+{
+    ref_factor_t f;
+    if (!vol || !vol->scalars || !p || !rgb || p->table_size < REF_MIN_TABLE || p->table_size > REF_MAX_TABLE ||
+        (p->mode != REF_MODE_POINT && p->mode != REF_MODE_PREINT1) || ref_factor(vol, view, out_w, out_h, &f))
+        return -1;
+    size_t N = (size_t)p->table_size;
+    size_t entries = p->mode == REF_MODE_POINT ? N : N * N;
+    double *table = malloc(4 * entries * sizeof(double));
+    double *inter = malloc(4 * (size_t)f.int_w * (size_t)f.int_h * sizeof(double));
+    int rc = -1;
+    if (table && inter) {
+        rc = p->mode == REF_MODE_POINT ? ref_point_table(tf, npoints, p->table_size, f.slab, table)
+                                       : ref_preint_table(tf, npoints, p->table_size, f.slab, table);
+        if (rc == 0)
+            rc = ref_composite(vol, &f, p->mode, p->table_size, table, inter);
+        if (rc == 0)
+            ref_warp(&f, inter, p->background, rgb);
+    }
+    free(table);
+    free(inter);
+    if (rc == 0 && factor_out)
+        *factor_out = f;
+    return rc;
+}

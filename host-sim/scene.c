@@ -1,0 +1,160 @@
+/* scene.c: load a scene and render it with the core or the reference (see scene.h). */
+#include "scene.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ref/ref.h"
+
+int32_t sim_bau(double degrees)
+{
+    return (int32_t)lround(degrees * VF_BAU_PER_TURN / 360.0);
+}
+
+vf_view_t sim_view(double azimuth, double elevation, double roll, double zoom)
+{
+    vf_view_t v = {sim_bau(azimuth), sim_bau(elevation), sim_bau(roll), (uint32_t)lround(zoom * 65536)};
+    return v;
+}
+
+int sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen)
+{
+    memset(s, 0, sizeof *s);
+    if (vfp_volume_load(&s->vol, o->volume, &o->load, err, errlen))
+        return 2;
+    s->window = vfp_default_window(&s->vol);
+    if (o->window && vfp_parse_window(&s->vol, o->window, &s->window, err, errlen)) {
+        vfp_volume_free(&s->vol);
+        return 2;
+    }
+    int status = o->tf_file ? vfp_tf_load(&s->tf, o->tf_file, err, errlen)
+                            : vfp_tf_preset(&s->tf, o->preset ? o->preset : "ramp", err, errlen);
+    if (status) {
+        vfp_volume_free(&s->vol);
+        return 2;
+    }
+    s->npoints = vfp_tf_to_core(&s->tf, &s->vol, s->window, s->points);
+    s->params = o->params;
+    s->view = sim_view(o->azimuth, o->elevation, o->roll, o->zoom);
+    s->width = o->width;
+    s->height = o->height;
+    s->format = o->format;
+    s->threads = o->threads;
+    return 0;
+}
+
+void sim_scene_free(sim_scene_t *s)
+{
+    vfp_volume_free(&s->vol);
+    memset(s, 0, sizeof *s);
+}
+
+int sim_image_alloc(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
+{
+    img->width = width;
+    img->height = height;
+    img->format = format;
+    img->stride = width * vf_format_bytes(format);
+    img->pixels = calloc(height, img->stride);
+    return img->pixels ? 0 : 2;
+}
+
+void sim_image_free(vf_image_t *img)
+{
+    free(img->pixels);
+    img->pixels = NULL;
+}
+
+int sim_render_core(const sim_scene_t *s, vf_image_t *img, char *err, size_t errlen)
+{
+    vfp_render_t r;
+    if (sim_image_alloc(img, s->width, s->height, s->format)) {
+        snprintf(err, errlen, "out of memory for a %ux%u image", s->width, s->height);
+        return 2;
+    }
+    int status = vfp_render_open(&r, &s->params, &s->vol.core, s->threads, err, errlen);
+    if (status == 0)
+        status = vfp_render_set_window(&r, s->window, err, errlen);
+    if (status == 0)
+        status = vfp_render_set_tf(&r, s->points, s->npoints, err, errlen);
+    if (status == 0)
+        status = vfp_render_frame(&r, &s->view, img, err, errlen);
+    vfp_render_close(&r);
+    if (status)
+        sim_image_free(img);
+    return status;
+}
+
+/* The reference gets the same inputs the core gets: the spacing, view and transfer function as quantised
+ * for the core, and it windows the raw voxels itself. */
+int sim_render_reference(const sim_scene_t *s, vf_image_t *img, char *err, size_t errlen)
+{
+    const vf_volume_t *cv = &s->vol.core;
+    int dims[3] = {(int)cv->dims[0], (int)cv->dims[1], (int)cv->dims[2]};
+    size_t voxels = (size_t)dims[0] * dims[1] * dims[2];
+    uint8_t *scalars = malloc(voxels);
+    double *rgb = malloc(sizeof(double) * 3 * s->width * s->height);
+    ref_tf_point_t tf[VF_MAX_TF_POINTS];
+    if (!scalars || !rgb || sim_image_alloc(img, s->width, s->height, s->format)) {
+        free(scalars);
+        free(rgb);
+        snprintf(err, errlen, "out of memory for the reference");
+        return 2;
+    }
+    ref_window(cv->voxels, (int)cv->type, dims, s->window.lo, s->window.hi, scalars);
+    ref_volume_t vol = {{dims[0], dims[1], dims[2]},
+                        {cv->spacing_q16[0] / 65536.0, cv->spacing_q16[1] / 65536.0, cv->spacing_q16[2] / 65536.0},
+                        scalars};
+    for (uint32_t i = 0; i < s->npoints; i++)
+        tf[i] = (ref_tf_point_t){s->points[i].scalar_q8 / 256.0, s->points[i].r / 65535.0,
+                                 s->points[i].g / 65535.0, s->points[i].b / 65535.0, s->points[i].a / 65535.0};
+    ref_params_t params = {s->params.mode == VF_MODE_POINT ? REF_MODE_POINT : REF_MODE_PREINT1,
+                           (int)s->params.table_size,
+                           {s->params.background[0] / 65535.0, s->params.background[1] / 65535.0,
+                            s->params.background[2] / 65535.0}};
+    ref_view_t view = {s->view.azimuth, s->view.elevation, s->view.roll, s->view.zoom_q16 / 65536.0};
+    int status = ref_render(&vol, tf, (int)s->npoints, &params, &view, (int)s->width, (int)s->height, rgb, NULL);
+    if (status == 0) {
+        /* the reference's colours, rounded into the output format as the core stores them */
+        for (uint32_t y = 0; y < s->height; y++)
+            for (uint32_t x = 0; x < s->width; x++) {
+                const double *c = rgb + ((size_t)y * s->width + x) * 3;
+                uint8_t *p = (uint8_t *)img->pixels + (size_t)y * img->stride + (size_t)x * vf_format_bytes(s->format);
+                long q[3];
+                for (int n = 0; n < 3; n++) {
+                    double v = c[n] < 0 ? 0 : c[n] > 1 ? 1 : c[n];
+                    q[n] = lround(v * (s->format == VF_FORMAT_RGB565 ? (n == 1 ? 63 : 31) : 255));
+                }
+                if (s->format == VF_FORMAT_RGB888) {
+                    p[0] = (uint8_t)q[0], p[1] = (uint8_t)q[1], p[2] = (uint8_t)q[2];
+                } else if (s->format == VF_FORMAT_RGB565) {
+                    unsigned word = (unsigned)(q[0] << 11 | q[1] << 5 | q[2]);
+                    p[0] = (uint8_t)(word & 0xFF), p[1] = (uint8_t)(word >> 8);
+                } else {
+                    p[0] = (uint8_t)q[2], p[1] = (uint8_t)q[1], p[2] = (uint8_t)q[0], p[3] = 0xFF;
+                }
+            }
+    } else {
+        snprintf(err, errlen, "the reference renderer failed (status %d)", status);
+        sim_image_free(img);
+    }
+    free(scalars);
+    free(rgb);
+    return status ? 2 : 0;
+}
+
+void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)
+{
+    const char *base = strrchr(s->vol.name, '/');
+    char view[64];
+    double deg = 360.0 / VF_BAU_PER_TURN;
+    if (s->view.roll)
+        snprintf(view, sizeof view, "%g,%g,%g", s->view.azimuth * deg, s->view.elevation * deg, s->view.roll * deg);
+    else
+        snprintf(view, sizeof view, "%g,%g", s->view.azimuth * deg, s->view.elevation * deg);
+    snprintf(text, len, "%s %s %ux%u view %s zoom %g %s window %d,%d", base ? base + 1 : s->vol.name,
+             vf_mode_name(s->params.mode), s->width, s->height, view, s->view.zoom_q16 / 65536.0, s->tf.name,
+             s->window.lo, s->window.hi);
+}

@@ -1,0 +1,46 @@
+/*
+ * scene.h: one scene (volume, window, transfer function, parameters, view, output size and format), rendered
+ * by the fixed-point core or by the double-precision reference from the same inputs.
+ */
+#ifndef SIM_SCENE_H
+#define SIM_SCENE_H
+
+#include "options.h"
+#include "render_mt.h"
+#include "tf.h"
+#include "volume.h"
+
+typedef struct sim_scene {
+    vfp_volume_t vol;
+    vf_window_t window;
+    vfp_tf_t tf;
+    vf_tf_point_t points[VF_MAX_TF_POINTS]; /* the transfer function as the core gets it */
+    uint32_t npoints;
+    vf_params_t params;
+    vf_view_t view;
+    uint32_t width, height;
+    vf_format_t format;
+    int threads;
+} sim_scene_t;
+
+/* Load the volume and transfer function the options name. Returns 0, or 2 with err. */
+int sim_scene_load(sim_scene_t *scene, const sim_opts_t *opts, char *err, size_t errlen);
+void sim_scene_free(sim_scene_t *scene);
+
+/* Degrees to binary angle units, and a view from the options' angles and zoom. */
+int32_t sim_bau(double degrees);
+vf_view_t sim_view(double azimuth, double elevation, double roll, double zoom);
+
+/* An image of the scene's size and format (pixels malloc'd; free with sim_image_free). */
+int sim_image_alloc(vf_image_t *image, uint32_t width, uint32_t height, vf_format_t format);
+void sim_image_free(vf_image_t *image);
+
+/* Render with the core (threads from the scene) or the reference into an image of the scene's size and
+ * format. Return 0, or 2 with err. */
+int sim_render_core(const sim_scene_t *scene, vf_image_t *image, char *err, size_t errlen);
+int sim_render_reference(const sim_scene_t *scene, vf_image_t *image, char *err, size_t errlen);
+
+/* "engine.nhdr preint1 512x512 view 30,20 ramp window 0,255": what a line of output is about. */
+void sim_scene_describe(const sim_scene_t *scene, char *text, size_t len);
+
+#endif

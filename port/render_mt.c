@@ -1,0 +1,213 @@
+/* render_mt.c: the core renderer with malloc'd memory and pthreads (see render_mt.h). */
+#include "render_mt.h"
+
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define WARP_BAND 16
+
+typedef struct band_work {
+    vfp_render_t *r;
+    const vf_image_t *image;
+    atomic_uint next_band;
+    uint32_t bands, rows;
+    int warp;                /* 0: composite intermediate rows, 1: warp output rows */
+    atomic_int status;       /* the first failure, VF_OK otherwise */
+} band_work_t;
+
+typedef struct worker {
+    band_work_t *work;
+    int index;
+} worker_t;
+
+static int create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t errlen);
+static int apply(vfp_render_t *r, char *err, size_t errlen);
+static void *run_bands(void *arg);
+static vf_status_t spread(vfp_render_t *r, band_work_t *work);
+
+double vfp_now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+int vfp_render_open(vfp_render_t *r, const vf_params_t *params, const vf_volume_t *volume, int threads, char *err,
+                    size_t errlen)
+{
+    memset(r, 0, sizeof *r);
+    r->params = *params;
+    r->volume = volume;
+    r->threads = threads < 1 ? 1 : threads > VFP_MAX_THREADS ? VFP_MAX_THREADS : threads;
+    r->band_rows = 8;
+    size_t fixed;
+    vf_status_t s = vf_renderer_bytes(params, volume, &fixed);
+    if (s != VF_OK) {
+        snprintf(err, errlen, "cannot render this volume: %s", vf_status_text(s));
+        return 2;
+    }
+    /* The run lists come on top; a quarter of the fixed part is usually plenty, and set_tf grows it if not. */
+    if (create_core(r, fixed + fixed / 4, err, errlen))
+        return 2;
+    return 0;
+}
+
+int vfp_render_set_window(vfp_render_t *r, vf_window_t window, char *err, size_t errlen)
+{
+    r->window = window;
+    r->have_window = 1;
+    return apply(r, err, errlen);
+}
+
+int vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t count, char *err, size_t errlen)
+{
+    if (count > VF_MAX_TF_POINTS) {
+        snprintf(err, errlen, "transfer function has %u points (at most %d)", count, VF_MAX_TF_POINTS);
+        return 2;
+    }
+    memcpy(r->tf_points, points, sizeof *points * count);
+    r->tf.points = r->tf_points;
+    r->tf.count = count;
+    r->have_tf = 1;
+    return apply(r, err, errlen);
+}
+
+int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen)
+{
+    double t0 = vfp_now_ms();
+    vf_status_t s = vf_render_begin(r->core, view, image->width, image->height);
+    if (s != VF_OK) {
+        snprintf(err, errlen, "cannot begin a frame: %s", vf_status_text(s));
+        return 2;
+    }
+    double t1 = vfp_now_ms();
+    const vf_factor_t *f = vf_render_factor(r->core);
+    band_work_t work = {.r = r, .image = image, .rows = f->int_h, .warp = 0};
+    work.bands = (f->int_h + r->band_rows - 1) / r->band_rows;
+    s = spread(r, &work);
+    double t2 = vfp_now_ms();
+    if (s == VF_OK) {
+        band_work_t warp = {.r = r, .image = image, .rows = image->height, .warp = 1};
+        warp.bands = (image->height + WARP_BAND - 1) / WARP_BAND;
+        s = spread(r, &warp);
+    }
+    double t3 = vfp_now_ms();
+    if (s != VF_OK) {
+        snprintf(err, errlen, "cannot render a frame: %s", vf_status_text(s));
+        return 2;
+    }
+    r->ms_tables = t1 - t0;
+    r->ms_composite = t2 - t1;
+    r->ms_warp = t3 - t2;
+    return 0;
+}
+
+void vfp_render_close(vfp_render_t *r)
+{
+    for (int t = 0; t < VFP_MAX_THREADS; t++)
+        free(r->scratch[t]);
+    free(r->arena_buf);
+    memset(r, 0, sizeof *r);
+}
+
+static int create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t errlen)
+{
+    free(r->arena_buf);
+    r->arena_buf = malloc(arena_bytes);
+    if (!r->arena_buf) {
+        snprintf(err, errlen, "out of memory: the renderer needs %zu MB", arena_bytes >> 20);
+        return 2;
+    }
+    vf_arena_init(&r->arena, r->arena_buf, arena_bytes);
+    vf_status_t s = vf_renderer_create(&r->core, &r->params, r->volume, &r->arena);
+    if (s != VF_OK) {
+        snprintf(err, errlen, "cannot create the renderer: %s", vf_status_text(s));
+        return 2;
+    }
+    /* Scratch for the tallest band, per thread; the core sizes it for any view of this volume. */
+    r->scratch_bytes = vf_band_scratch_bytes(r->core, r->band_rows);
+    for (int t = 0; t < r->threads; t++) {
+        free(r->scratch[t]);
+        r->scratch[t] = malloc(r->scratch_bytes);
+        if (!r->scratch[t]) {
+            snprintf(err, errlen, "out of memory for band scratch");
+            return 2;
+        }
+    }
+    return 0;
+}
+
+/* Give the core the current window and transfer function, growing the arena once if the run lists need it. */
+static int apply(vfp_render_t *r, char *err, size_t errlen)
+{
+    double t0 = vfp_now_ms();
+    for (int attempt = 0; attempt < 2; attempt++) {
+        vf_status_t s = VF_OK;
+        if (r->have_window)
+            s = vf_renderer_set_window(r->core, r->window);
+        if (s == VF_OK && r->have_tf)
+            s = vf_renderer_set_tf(r->core, &r->tf);
+        if (s == VF_OK) {
+            r->ms_classify = vfp_now_ms() - t0;
+            return 0;
+        }
+        if (s != VF_ERR_NOMEM || attempt == 1) {
+            snprintf(err, errlen, "%s: %s", r->have_tf ? "cannot apply the transfer function" : "cannot set the window",
+                     vf_status_text(s));
+            return 2;
+        }
+        size_t needed = vf_renderer_needed_bytes(r->core);
+        if (create_core(r, needed + needed / 8, err, errlen))
+            return 2;
+    }
+    return 2;
+}
+
+static void *run_bands(void *arg)
+{
+    worker_t *w = arg;
+    band_work_t *work = w->work;
+    vfp_render_t *r = work->r;
+    for (;;) {
+        unsigned band = atomic_fetch_add(&work->next_band, 1);
+        if (band >= work->bands || atomic_load(&work->status) != VF_OK)
+            break;
+        vf_status_t s;
+        if (work->warp) {
+            uint32_t y0 = band * WARP_BAND, y1 = y0 + WARP_BAND < work->rows ? y0 + WARP_BAND : work->rows;
+            s = vf_warp_band(r->core, work->image, y0, y1);
+        } else {
+            uint32_t v0 = band * r->band_rows, v1 = v0 + r->band_rows < work->rows ? v0 + r->band_rows : work->rows;
+            s = vf_composite_band(r->core, v0, v1, r->scratch[w->index], r->scratch_bytes);
+        }
+        if (s != VF_OK) {
+            int expected = VF_OK;
+            atomic_compare_exchange_strong(&work->status, &expected, (int)s);
+        }
+    }
+    return NULL;
+}
+
+static vf_status_t spread(vfp_render_t *r, band_work_t *work)
+{
+    atomic_init(&work->next_band, 0);
+    atomic_init(&work->status, VF_OK);
+    worker_t workers[VFP_MAX_THREADS];
+    pthread_t ids[VFP_MAX_THREADS];
+    int started = 0;
+    for (int t = 1; t < r->threads; t++) {
+        workers[t] = (worker_t){work, t};
+        if (pthread_create(&ids[t], NULL, run_bands, &workers[t]) != 0)
+            break; /* fewer threads is slower, not wrong */
+        started = t;
+    }
+    workers[0] = (worker_t){work, 0};
+    run_bands(&workers[0]);
+    for (int t = 1; t <= started; t++)
+        pthread_join(ids[t], NULL);
+    return (vf_status_t)atomic_load(&work->status);
+}

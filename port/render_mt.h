@@ -1,0 +1,44 @@
+/*
+ * render_mt.h: the core renderer with its memory and threads provided: an arena from malloc sized by the
+ * core's own queries (grown when a transfer function needs longer run lists), and compositing and warping
+ * spread over threads in bands. The same pixels for any thread count: each pixel is computed by one band.
+ */
+#ifndef VFP_RENDER_MT_H
+#define VFP_RENDER_MT_H
+
+#include <stddef.h>
+
+#include "volfix.h"
+
+#define VFP_MAX_THREADS 16
+
+typedef struct vfp_render {
+    vf_params_t params;
+    const vf_volume_t *volume;
+    vf_renderer_t *core;
+    unsigned char *arena_buf;
+    vf_arena_t arena;
+    int have_window, have_tf;
+    vf_window_t window;
+    vf_tf_point_t tf_points[VF_MAX_TF_POINTS];
+    vf_tf_t tf;
+    int threads;
+    uint32_t band_rows;               /* intermediate rows per compositing band */
+    size_t scratch_bytes;
+    void *scratch[VFP_MAX_THREADS];
+    double ms_tables, ms_composite, ms_warp; /* the last frame's stages (begin includes table rebuilds) */
+    double ms_classify;                      /* the last window or transfer-function change */
+} vfp_render_t;
+
+/* All return 0, or 2 with a one-line message in err. */
+int vfp_render_open(vfp_render_t *r, const vf_params_t *params, const vf_volume_t *volume, int threads, char *err,
+                    size_t errlen);
+int vfp_render_set_window(vfp_render_t *r, vf_window_t window, char *err, size_t errlen);
+int vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t count, char *err, size_t errlen);
+int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen);
+void vfp_render_close(vfp_render_t *r);
+
+/* Milliseconds on the monotonic clock. */
+double vfp_now_ms(void);
+
+#endif

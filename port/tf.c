@@ -1,0 +1,206 @@
+/* tf.c: transfer-function files, presets, and their conversion to the core's control points (see tf.h). */
+#include "tf.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct preset {
+    const char *name;
+    const char *about;
+    int count;
+    vfp_tf_point_t points[12];
+} preset_t;
+
+/* Normalised to the window. Opacity is per voxel: a slab of a few voxels at 0.3 is already mostly opaque. */
+static const preset_t presets[] = {
+    {"ramp", "opacity rises linearly from 0 to 1 over the window, white (the benchmark setting)", 2,
+     {{0.0, 1, 1, 1, 0}, {1.0, 1, 1, 1, 1}}},
+    {"sharp", "three narrow opacity peaks (orange, green, white): the case pre-integration exists for", 10,
+     {{0.0, 0, 0, 0, 0},
+      {0.29, 1, 0.5, 0.1, 0}, {0.30, 1, 0.5, 0.1, 0.9}, {0.31, 1, 0.5, 0.1, 0},
+      {0.54, 0.2, 1, 0.3, 0}, {0.55, 0.2, 1, 0.3, 0.9}, {0.56, 0.2, 1, 0.3, 0},
+      {0.79, 1, 1, 1, 0}, {0.80, 1, 1, 1, 1}, {0.81, 1, 1, 1, 0}}},
+    {"ct-bone", "CT: bone, ivory and opaque; soft tissue and air clear", 4,
+     {{0.0, 1, 0.95, 0.85, 0}, {0.42, 1, 0.95, 0.85, 0}, {0.6, 1, 0.95, 0.85, 0.6}, {1.0, 1, 1, 1, 0.9}}},
+    {"ct-skin-bone", "CT: translucent skin over opaque bone", 7,
+     {{0.0, 0.9, 0.6, 0.45, 0}, {0.12, 0.9, 0.6, 0.45, 0}, {0.18, 0.9, 0.6, 0.45, 0.06},
+      {0.30, 0.9, 0.6, 0.45, 0.02}, {0.42, 1, 0.95, 0.85, 0.02}, {0.6, 1, 0.95, 0.85, 0.6},
+      {1.0, 1, 1, 1, 0.9}}},
+    {"mr-brain", "MR: soft opacity ramp from dark red through orange to white", 5,
+     {{0.0, 0.3, 0.05, 0.05, 0}, {0.15, 0.5, 0.1, 0.05, 0}, {0.4, 0.9, 0.45, 0.2, 0.04},
+      {0.7, 1, 0.85, 0.6, 0.12}, {1.0, 1, 1, 1, 0.3}}},
+};
+
+#define PRESET_COUNT (sizeof presets / sizeof presets[0])
+
+const char *const vfp_tf_preset_names[] = {"ramp", "sharp", "ct-bone", "ct-skin-bone", "mr-brain", NULL};
+
+static double eval(const vfp_tf_point_t *p, int count, double x, int channel);
+static double channel(const vfp_tf_point_t *p, int c);
+
+int vfp_tf_preset(vfp_tf_t *tf, const char *name, char *err, size_t errlen)
+{
+    for (size_t i = 0; i < PRESET_COUNT; i++)
+        if (strcmp(presets[i].name, name) == 0) {
+            memset(tf, 0, sizeof *tf);
+            snprintf(tf->name, sizeof tf->name, "%s", name);
+            tf->count = presets[i].count;
+            memcpy(tf->points, presets[i].points, sizeof(vfp_tf_point_t) * (size_t)presets[i].count);
+            return 0;
+        }
+    snprintf(err, errlen, "unknown preset '%s' (expected ramp, sharp, ct-bone, ct-skin-bone or mr-brain)", name);
+    return 2;
+}
+
+const char *vfp_tf_preset_about(const char *name)
+{
+    for (size_t i = 0; i < PRESET_COUNT; i++)
+        if (strcmp(presets[i].name, name) == 0)
+            return presets[i].about;
+    return NULL;
+}
+
+int vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
+{
+    memset(tf, 0, sizeof *tf);
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        return 2;
+    }
+    const char *base = strrchr(path, '/');
+    snprintf(tf->name, sizeof tf->name, "%s", base ? base + 1 : path);
+    char line[512];
+    int lineno = 0, status = 0;
+    while (status == 0 && fgets(line, sizeof line, f)) {
+        lineno++;
+        char *hash = strchr(line, '#');
+        if (hash)
+            *hash = 0;
+        char word[32];
+        if (sscanf(line, " %31s", word) != 1)
+            continue; /* blank or comment */
+        if (strcmp(word, "units") == 0) {
+            char units[32] = "";
+            if (sscanf(line, " units %31s", units) == 1 && strcmp(units, "normalized") == 0) {
+                tf->data_units = 0;
+            } else if (strcmp(units, "data") == 0) {
+                tf->data_units = 1;
+            } else {
+                snprintf(err, errlen, "%s:%d: expected 'units normalized' or 'units data'", path, lineno);
+                status = 2;
+            }
+            continue;
+        }
+        vfp_tf_point_t p;
+        char extra[2];
+        int got = sscanf(line, "%lf %lf %lf %lf %lf %1s", &p.s, &p.r, &p.g, &p.b, &p.a, extra);
+        if (got != 5) {
+            snprintf(err, errlen, "%s:%d: expected a control point 'scalar r g b a' (five numbers)", path, lineno);
+            status = 2;
+        } else if (!isfinite(p.s)) {
+            snprintf(err, errlen, "%s:%d: the scalar is not a finite number", path, lineno);
+            status = 2;
+        } else if (!(p.r >= 0 && p.r <= 1 && p.g >= 0 && p.g <= 1 && p.b >= 0 && p.b <= 1 && p.a >= 0 && p.a <= 1)) {
+            snprintf(err, errlen, "%s:%d: colour and opacity must be within [0, 1]", path, lineno);
+            status = 2;
+        } else if (tf->count > 0 && p.s < tf->points[tf->count - 1].s) {
+            snprintf(err, errlen, "%s:%d: scalar %g is below the previous point's %g (scalars must not decrease)",
+                     path, lineno, p.s, tf->points[tf->count - 1].s);
+            status = 2;
+        } else if (tf->count >= VF_MAX_TF_POINTS - 2) {
+            snprintf(err, errlen, "%s:%d: more than %d control points", path, lineno, VF_MAX_TF_POINTS - 2);
+            status = 2;
+        } else {
+            tf->points[tf->count++] = p;
+        }
+    }
+    if (status == 0 && ferror(f)) {
+        snprintf(err, errlen, "%s: read error: %s", path, strerror(errno));
+        status = 2;
+    }
+    fclose(f);
+    if (status == 0 && tf->count == 0) {
+        snprintf(err, errlen, "%s: no control points (expected lines 'scalar r g b a')", path);
+        status = 2;
+    }
+    return status;
+}
+
+uint32_t vfp_tf_to_core(const vfp_tf_t *tf, const vfp_volume_t *vol, vf_window_t w, vf_tf_point_t *out)
+{
+    /* Each point's position in the scalar domain 0..255; a descending window reverses the order. */
+    vfp_tf_point_t mapped[VF_MAX_TF_POINTS];
+    int n = tf->count < VF_MAX_TF_POINTS - 2 ? tf->count : VF_MAX_TF_POINTS - 2;
+    if (n <= 0) { /* an empty function is transparent everywhere */
+        out[0] = (vf_tf_point_t){0, 0, 0, 0, 0};
+        return 1;
+    }
+    double slope = vol && vol->slope != 0 ? vol->slope : 1, inter = vol ? vol->inter : 0;
+    for (int i = 0; i < n; i++) {
+        mapped[i] = tf->points[i];
+        if (tf->data_units) {
+            double raw = (tf->points[i].s - inter) / slope;
+            mapped[i].s = (raw - w.lo) * 255.0 / ((double)w.hi - w.lo);
+        } else {
+            mapped[i].s = tf->points[i].s * 255.0;
+        }
+    }
+    if (n > 1 && mapped[n - 1].s < mapped[0].s)
+        for (int i = 0; i < n / 2; i++) {
+            vfp_tf_point_t t = mapped[i];
+            mapped[i] = mapped[n - 1 - i];
+            mapped[n - 1 - i] = t;
+        }
+
+    /* Clip to [0, 255], adding edge points where the function continues outside. */
+    vfp_tf_point_t kept[VF_MAX_TF_POINTS];
+    int k = 0;
+    if (mapped[0].s < 0) {
+        kept[k] = (vfp_tf_point_t){0, eval(mapped, n, 0, 0), eval(mapped, n, 0, 1), eval(mapped, n, 0, 2),
+                                   eval(mapped, n, 0, 3)};
+        k++;
+    }
+    for (int i = 0; i < n; i++)
+        if (mapped[i].s >= 0 && mapped[i].s <= 255)
+            kept[k++] = mapped[i];
+    if (mapped[n - 1].s > 255) {
+        kept[k] = (vfp_tf_point_t){255, eval(mapped, n, 255, 0), eval(mapped, n, 255, 1), eval(mapped, n, 255, 2),
+                                   eval(mapped, n, 255, 3)};
+        k++;
+    }
+    if (k == 0) /* cannot happen (a point below 0 or above 255 adds an edge), but keep the core's contract */
+        kept[k++] = (vfp_tf_point_t){0, 0, 0, 0, 0};
+
+    for (int i = 0; i < k; i++) {
+        double s = floor(kept[i].s * 256 + 0.5);
+        out[i].scalar_q8 = (uint16_t)(s < 0 ? 0 : s > 65280 ? 65280 : s);
+        out[i].r = (uint16_t)floor(kept[i].r * 65535 + 0.5);
+        out[i].g = (uint16_t)floor(kept[i].g * 65535 + 0.5);
+        out[i].b = (uint16_t)floor(kept[i].b * 65535 + 0.5);
+        out[i].a = (uint16_t)floor(kept[i].a * 65535 + 0.5);
+    }
+    return (uint32_t)k;
+}
+
+/* The function at x (right-continuous at steps), channel 0..3 = r, g, b, a. */
+static double eval(const vfp_tf_point_t *p, int count, double x, int c)
+{
+    int i = -1;
+    while (i + 1 < count && p[i + 1].s <= x)
+        i++;
+    if (i < 0)
+        return channel(&p[0], c);
+    if (i == count - 1)
+        return channel(&p[i], c);
+    double t = (x - p[i].s) / (p[i + 1].s - p[i].s);
+    return channel(&p[i], c) + t * (channel(&p[i + 1], c) - channel(&p[i], c));
+}
+
+static double channel(const vfp_tf_point_t *p, int c)
+{
+    return c == 0 ? p->r : c == 1 ? p->g : c == 2 ? p->b : p->a;
+}

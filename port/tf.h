@@ -1,0 +1,53 @@
+/*
+ * tf.h: transfer functions as people write them (a small text format, or a built-in preset), and their
+ * conversion to the core's control points for a volume and window.
+ *
+ * The text format, one control point a line:
+ *
+ *     # comments start with '#'
+ *     units normalized          # optional: "normalized" (the default) or "data"
+ *     0.00   0 0 0   0
+ *     0.40   1 0.8 0.6   0.05   # scalar  red green blue  opacity-per-voxel
+ *     1.00   1 1 1   0.9
+ *
+ * Scalars are non-decreasing. With "units normalized" a scalar of 0 is the bottom of the window and 1 its top,
+ * so the function moves with the window (CT window/level); with "units data" scalars are data values (after a
+ * NIfTI slope and intercept), fixed to the data whatever the window. Colour and opacity are in [0, 1]; opacity
+ * is per unit length (one voxel of the smallest spacing). Between points the function is linear; beyond the
+ * first and last point it is constant; two points at one scalar make a step.
+ */
+#ifndef VFP_TF_H
+#define VFP_TF_H
+
+#include <stddef.h>
+
+#include "volfix.h"
+#include "volume.h"
+
+typedef struct vfp_tf_point {
+    double s, r, g, b, a;
+} vfp_tf_point_t;
+
+typedef struct vfp_tf {
+    char name[64];
+    int data_units; /* 0: scalars normalised to the window; 1: data units */
+    int count;
+    vfp_tf_point_t points[VF_MAX_TF_POINTS];
+} vfp_tf_t;
+
+/* Read a transfer-function file. Returns 0, or 2 with a one-line "FILE:LINE: ..." message in err. */
+int vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen);
+
+/* A built-in preset by name. Returns 0, or 2 with err listing the names. */
+int vfp_tf_preset(vfp_tf_t *tf, const char *name, char *err, size_t errlen);
+
+/* The preset names, NULL-terminated, and a one-line description of each. */
+extern const char *const vfp_tf_preset_names[];
+const char *vfp_tf_preset_about(const char *name);
+
+/* Control points for the core: scalars mapped through the window to 0..255 (clipped there, with points added
+ * at the window's edges so that the shape inside is kept), values to unorm16. out holds VF_MAX_TF_POINTS.
+ * Returns the number of points (at least 1). */
+uint32_t vfp_tf_to_core(const vfp_tf_t *tf, const vfp_volume_t *vol, vf_window_t window, vf_tf_point_t *out);
+
+#endif

@@ -1,0 +1,59 @@
+/*
+ * volume.h: reading volumes into memory for the core (NRRD, NIfTI-1, VolPack .den, raw, synthetic phantoms),
+ * and choosing the window that maps 16-bit data to the core's 8-bit scalar domain.
+ *
+ * Every failure fills `err` with one line that names the file (and the header line when there is one) and says
+ * what was wrong and what was expected, for example
+ *   "data/x.nhdr:4: unknown type 'float32' (expected int8, uint8, int16 or uint16)"
+ *   "data/x.raw: truncated: expected 1376256 bytes of voxel data, found 1000"
+ * Programs print it and exit with status 2.
+ */
+#ifndef VFP_VOLUME_H
+#define VFP_VOLUME_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "volfix.h"
+
+#define VFP_ERR_LEN 512
+
+typedef struct vfp_volume {
+    vf_volume_t core;     /* what the core reads; core.voxels points at data, native byte order */
+    void *data;           /* voxel storage owned by this struct (malloc) */
+    double spacing[3];    /* spacing as read (file units, usually mm) */
+    double slope, inter;  /* data value = slope * raw + inter (NIfTI scl_slope/scl_inter; else 1 and 0) */
+    int32_t raw_min, raw_max;
+    char name[256];       /* the file name or phantom spec, for messages */
+    char format[16];      /* "nrrd", "nifti", "den", "raw", "phantom" */
+} vfp_volume_t;
+
+/* Options for files that do not describe themselves (raw). */
+typedef struct vfp_load_opts {
+    int have_dims;        /* --dims X,Y,Z given */
+    uint32_t dims[3];
+    int have_type;        /* --type given */
+    vf_voxel_t type;
+    int big_endian;       /* --big-endian */
+    int have_spacing;     /* --spacing X,Y,Z given (also overrides a file's own spacing) */
+    double spacing[3];
+} vfp_load_opts_t;
+
+/* Load by name: a file path (format from its contents and extension: .nhdr/.nrrd, .nii/.nii.gz, .den, else raw,
+ * which needs dims and type), or a synthetic volume "phantom:NAME:N" with NAME marschner-lobb, shepp-logan or
+ * sphere and N the size of each side (2..1024). Returns 0, or 2 with `err` filled. */
+int vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err, size_t errlen);
+void vfp_volume_free(vfp_volume_t *vol);
+
+/* The default window: the full range 0..255 for 8-bit data, otherwise the 0.5 and 99.5 percentiles of the raw
+ * values (never lo == hi). */
+vf_window_t vfp_default_window(const vfp_volume_t *vol);
+
+/* Parse "LO,HI" in data units (after slope/intercept) into a raw-value window. Returns 0, or 2 with err. */
+int vfp_parse_window(const vfp_volume_t *vol, const char *text, vf_window_t *window, char *err, size_t errlen);
+
+/* Parse "X,Y,Z" (positive integers) and "uint8|int8|uint16|int16". Return 0, or 2 with err. */
+int vfp_parse_dims(const char *text, uint32_t dims[3], char *err, size_t errlen);
+int vfp_parse_type(const char *text, vf_voxel_t *type, char *err, size_t errlen);
+
+#endif /* VFP_VOLUME_H */

@@ -1,0 +1,77 @@
+/*
+ * volume_internal.h: what the volume readers share (error text, checks, byte order, reading voxel data exactly).
+ *
+ * Names: vfp_ is the port's public prefix (volume.h); vfpi_ marks functions shared by the port's volume files
+ * and no one else. Every vfpi_ function that can fail returns 0 or 2 (the programs' exit status for a bad input)
+ * and fills err with one line that starts with the file name, as volume.h promises.
+ */
+#ifndef VFP_VOLUME_INTERNAL_H
+#define VFP_VOLUME_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "volume.h"
+
+/* Bytes the dispatcher looks at to recognise a file: a NIfTI-1 header (348) and its extension flag (4). */
+#define VFPI_HEAD_BYTES 352
+
+/* Largest spacing we accept: spacing_q16 must fit the core's uint32_t with room for sums of a few. */
+#define VFPI_MAX_SPACING 32767.0
+
+/* Where a file's voxel data is and how to get at it. Skips happen in this order: offset (file bytes), line_skip
+ * (lines of the file as stored), byte_skip (bytes after decompression, as NRRD and gzip'd NIfTI need). */
+typedef struct vfpi_source {
+    const char *path;  /* the file to open (as messages name it) */
+    const char *owner; /* NULL, or "header:LINE" that named this file: open failures name it first */
+    const char *note;  /* NULL, or a hint appended in parentheses to size errors ("data file named by x:7") */
+    uint64_t offset;
+    uint32_t line_skip;
+    int64_t byte_skip; /* -1: the data is the last bytes of the (uncompressed) file, NRRD's "byte skip: -1" */
+    int gzip;          /* the data is gzip (or zlib) compressed; concatenated gzip members are one stream */
+} vfpi_source_t;
+
+/* Formats "name:line: message" (line 0: "name: message") into err; returns 2, so `return vfpi_fail(...)`. */
+int vfpi_fail(char *err, size_t errlen, const char *name, unsigned line, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+
+/* Reads up to cap bytes from the start of a file (decompressed when gzip) for recognising it. Errors of a
+ * damaged gzip stream are not reported here (the reader that follows reports them); a file that cannot be
+ * opened is. */
+int vfpi_read_head(const char *path, int gzip, unsigned char *buf, size_t cap, size_t *got, char *err,
+                   size_t errlen);
+
+/* Reads exactly `bytes` bytes of voxel data; more or fewer bytes in the file (after the skips) is an error. */
+int vfpi_read_data(const vfpi_source_t *src, void *dst, size_t bytes, char *err, size_t errlen);
+
+/* Checks: each size 2..VF_MAX_DIM; a spacing finite, > 0, <= VFPI_MAX_SPACING and not 0 in Q16.16. */
+int vfpi_check_dims(const uint64_t dims[3], const char *name, unsigned line, char *err, size_t errlen);
+int vfpi_check_spacing(double spacing, int axis, const char *name, unsigned line, char *err, size_t errlen);
+
+/* Sets vol->core.dims and type and mallocs vol->data for them (exactly, products checked for overflow). */
+int vfpi_alloc_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, size_t *bytes,
+                      const char *name, char *err, size_t errlen);
+
+/* 16-bit values stored with the given byte order become native. */
+void vfpi_to_native16(void *data, size_t count, int big_endian);
+
+unsigned vfpi_type_bytes(vf_voxel_t type);
+int vfpi_has_suffix(const char *text, const char *suffix); /* ASCII case-insensitive */
+
+/* Little- and big-endian field loads from a byte buffer (no alignment needed). */
+uint16_t vfpi_load16(const unsigned char *p, int big_endian);
+uint32_t vfpi_load32(const unsigned char *p, int big_endian);
+
+/* The readers. Each fills vol->data, core.dims, core.type, spacing, slope and inter (or fails with everything it
+ * allocated freed); volume.c does the rest (spacing_q16, raw_min/max, voxels pointer). */
+int vfpi_load_nrrd(vfp_volume_t *vol, const char *path, char *err, size_t errlen);
+int vfpi_load_nifti(vfp_volume_t *vol, const char *path, int gzip, char *err, size_t errlen);
+int vfpi_load_den(vfp_volume_t *vol, const char *path, char *err, size_t errlen);
+int vfpi_load_raw(vfp_volume_t *vol, const char *path, const vfp_load_opts_t *opts, char *err, size_t errlen);
+int vfpi_load_phantom(vfp_volume_t *vol, const char *spec, char *err, size_t errlen);
+
+/* Recognisers for dispatch by content (head: the first bytes of the file, decompressed when gzip). */
+int vfpi_is_nifti(const unsigned char *head, size_t n);
+int vfpi_is_den(const unsigned char *head, size_t n, uint64_t file_bytes);
+
+#endif /* VFP_VOLUME_INTERNAL_H */

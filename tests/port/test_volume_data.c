@@ -1,0 +1,170 @@
+/*
+ * test_volume_data.c: the readers on the real volumes in the shared data folder (see its README.md): every header
+ * loads with the documented dims, type and spacing, and the same volume in different formats is the same voxels.
+ *
+ * The folder is $VOLFIX_DATA, else ../shared/data relative to the repository root (the tests' working directory).
+ * A machine without it (a fresh clone) reports every case as skipped, so this program has its own main.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "check.h"
+#include "volume.h"
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* Helpers */
+
+static const char *data_dir(void)
+{
+    const char *dir = getenv("VOLFIX_DATA");
+    return dir && dir[0] ? dir : "../shared/data";
+}
+
+static const char *data_path(const char *name)
+{
+    static char bufs[4][1024];
+    static int next;
+    char *b = bufs[next++ % 4];
+    snprintf(b, sizeof bufs[0], "%s/%s", data_dir(), name);
+    return b;
+}
+
+static int load(vfp_volume_t *vol, const char *name)
+{
+    char err[VFP_ERR_LEN];
+    int rc = vfp_volume_load(vol, data_path(name), NULL, err, sizeof err);
+    if (rc)
+        printf("# %s\n", err);
+    return rc;
+}
+
+static size_t volume_bytes(const vfp_volume_t *vol)
+{
+    size_t n = (size_t)vol->core.dims[0] * vol->core.dims[1] * vol->core.dims[2];
+    return vol->core.type == VF_VOXEL_U16 || vol->core.type == VF_VOXEL_I16 ? 2 * n : n;
+}
+
+/* Two loads of one volume: same dims, type and every voxel. */
+static void same_voxels(const char *a_name, const char *b_name)
+{
+    vfp_volume_t a, b;
+    CHECK_EQ(load(&a, a_name), 0);
+    if (load(&b, b_name) != 0) {
+        vfp_volume_free(&a);
+        CHECK_MSG(0, "%s did not load", b_name);
+    }
+    int same = a.core.type == b.core.type && memcmp(a.core.dims, b.core.dims, sizeof a.core.dims) == 0 &&
+               memcmp(a.core.voxels, b.core.voxels, volume_bytes(&a)) == 0;
+    vfp_volume_free(&a);
+    vfp_volume_free(&b);
+    CHECK_MSG(same, "%s and %s differ", a_name, b_name);
+}
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* Cases */
+
+static void data_nhdr_headers(void)
+{
+    /* The table of data/README.md. */
+    static const struct {
+        const char *file;
+        uint32_t dims[3];
+        vf_voxel_t type;
+        double spacing[3];
+    } volumes[] = {
+        {"bucky.nhdr", {32, 32, 32}, VF_VOXEL_U8, {1, 1, 1}},
+        {"neghip.nhdr", {64, 64, 64}, VF_VOXEL_U8, {1, 1, 1}},
+        {"headsq.nhdr", {64, 64, 93}, VF_VOXEL_I16, {3.2, 3.2, 1.5}},
+        {"brainsmall.nhdr", {128, 128, 84}, VF_VOXEL_U8, {1, 1, 1}},
+        {"engine.nhdr", {256, 256, 128}, VF_VOXEL_U8, {1, 1, 1}},
+        {"cthead.nhdr", {256, 256, 113}, VF_VOXEL_I16, {1, 1, 2}},
+    };
+    for (size_t v = 0; v < sizeof volumes / sizeof volumes[0]; v++) {
+        vfp_volume_t vol;
+        CHECK_MSG(load(&vol, volumes[v].file) == 0, "%s did not load", volumes[v].file);
+        int ok = strcmp(vol.format, "nrrd") == 0 && vol.core.type == volumes[v].type;
+        double smallest = volumes[v].spacing[0];
+        for (int a = 1; a < 3; a++)
+            smallest = volumes[v].spacing[a] < smallest ? volumes[v].spacing[a] : smallest;
+        for (int a = 0; a < 3; a++) {
+            ok = ok && vol.core.dims[a] == volumes[v].dims[a] && vol.spacing[a] == volumes[v].spacing[a];
+            ok = ok && vol.core.spacing_q16[a] == (uint32_t)(volumes[v].spacing[a] / smallest * 65536.0 + 0.5);
+        }
+        ok = ok && vol.raw_min < vol.raw_max;
+        printf("# %s: %ux%ux%u, raw %d..%d\n", volumes[v].file, vol.core.dims[0], vol.core.dims[1], vol.core.dims[2],
+               vol.raw_min, vol.raw_max);
+        vfp_volume_free(&vol);
+        CHECK_MSG(ok, "%s: dims, type or spacing differ from the README", volumes[v].file);
+    }
+}
+
+static void data_cthead_is_12_bit(void)
+{
+    /* Big-endian 12-bit values: a wrong byte order would put values far outside 0..4095. */
+    vfp_volume_t vol;
+    CHECK_EQ(load(&vol, "cthead.nhdr"), 0);
+    int32_t lo = vol.raw_min, hi = vol.raw_max;
+    vfp_volume_free(&vol);
+    CHECK_MSG(lo >= 0 && hi <= 4095 && hi > 1000, "cthead raw range %d..%d is not 12-bit data", lo, hi);
+}
+
+static void data_engine_nifti_equals_nrrd(void)
+{
+    same_voxels("engine.nii.gz", "engine.nhdr");
+    vfp_volume_t vol;
+    CHECK_EQ(load(&vol, "engine.nii.gz"), 0);
+    int ok = strcmp(vol.format, "nifti") == 0 && vol.slope == 1.0 && vol.inter == 0.0 && vol.spacing[0] == 1.0;
+    vfp_volume_free(&vol);
+    CHECK(ok);
+}
+
+static void data_brainsmall_den_equals_nrrd(void)
+{
+    same_voxels("brainsmall.den", "brainsmall.nhdr");
+    vfp_volume_t vol;
+    CHECK_EQ(load(&vol, "brainsmall.den"), 0);
+    int ok = strcmp(vol.format, "den") == 0 && vol.core.dims[0] == 128 && vol.core.dims[1] == 128 &&
+             vol.core.dims[2] == 84;
+    vfp_volume_free(&vol);
+    CHECK(ok);
+}
+
+static void data_default_windows(void)
+{
+    static const char *const files[] = {"headsq.nhdr", "cthead.nhdr"};
+    for (size_t f = 0; f < 2; f++) {
+        vfp_volume_t vol;
+        CHECK_EQ(load(&vol, files[f]), 0);
+        vf_window_t w = vfp_default_window(&vol);
+        printf("# %s: default window %d..%d of raw %d..%d\n", files[f], w.lo, w.hi, vol.raw_min, vol.raw_max);
+        int ok = w.lo < w.hi && w.lo >= vol.raw_min && w.hi <= vol.raw_max;
+        vfp_volume_free(&vol);
+        CHECK_MSG(ok, "%s: default window %d..%d is not sane", files[f], w.lo, w.hi);
+    }
+    vfp_volume_t vol;
+    CHECK_EQ(load(&vol, "bucky.nhdr"), 0);
+    vf_window_t w = vfp_default_window(&vol);
+    vfp_volume_free(&vol);
+    CHECK(w.lo == 0 && w.hi == 255);
+}
+
+CHECK_CASES({"data_nhdr_headers", data_nhdr_headers},
+            {"data_cthead_is_12_bit", data_cthead_is_12_bit},
+            {"data_engine_nifti_equals_nrrd", data_engine_nifti_equals_nrrd},
+            {"data_brainsmall_den_equals_nrrd", data_brainsmall_den_equals_nrrd},
+            {"data_default_windows", data_default_windows});
+
+/* CHECK_RUN's main, with the skip for a machine without the data. */
+int main(int argc, char **argv)
+{
+    int count = (int)(sizeof check_cases_ / sizeof check_cases_[0]);
+    struct stat st;
+    if (stat(data_path("README.md"), &st) != 0) {
+        for (int c = 0; c < count; c++)
+            printf("ok - volume/%s # skip: no data\n", check_cases_[c].name);
+        return 0;
+    }
+    return check_main("volume", check_cases_, count, argc, argv);
+}
