@@ -8,11 +8,12 @@
 #include "scene.h"
 
 static const char usage_head[] =
-    "usage: volfix-sim compare VOLUME [options] [--diff DIFF.png] [--json]\n"
+    "usage: volfix-sim compare VOLUME [options] [-o CORE.png] [--diff DIFF.png] [--json]\n"
     "Render VOLUME with the fixed-point core and with the double-precision reference of the same algorithm\n"
     "(same inputs, same table size, same lookups) and report how far apart they are, in 8-bit levels per\n"
     "channel: PSNR, largest and mean absolute difference, and the share of pixels off by more than 1.\n"
     "RGB565 images are compared after expanding both to 8 bits.\n\n"
+    "  -o FILE              also write the core's image as a PNG\n"
     "  --diff FILE          write the difference (largest channel, times 32) as a PNG\n"
     "  --json               print one JSON object: psnr_db, max_abs, mean_abs, over1_pct, and per channel\n";
 
@@ -21,7 +22,7 @@ int sim_cmd_compare(int argc, char **argv)
     char usage[4096], err[VFP_ERR_LEN], about[512];
     snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_DIFF | SIM_OPT_JSON, usage);
+    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_DIFF | SIM_OPT_JSON, usage);
     if (status)
         return status == 1 ? 0 : 2;
     sim_scene_t scene;
@@ -30,12 +31,13 @@ int sim_cmd_compare(int argc, char **argv)
         return 2;
     }
     vf_image_t core, ref;
-    if (sim_render_core(&scene, &core, err, sizeof err)) {
+    vf_factor_t factor;
+    if (sim_render_core(&scene, &core, &factor, err, sizeof err)) {
         fprintf(stderr, "volfix-sim: %s\n", err);
         sim_scene_free(&scene);
         return 2;
     }
-    if (sim_render_reference(&scene, &ref, err, sizeof err)) {
+    if (sim_render_reference(&scene, &factor, &ref, err, sizeof err)) {
         fprintf(stderr, "volfix-sim: %s\n", err);
         sim_image_free(&core);
         sim_scene_free(&scene);
@@ -64,6 +66,10 @@ int sim_cmd_compare(int argc, char **argv)
         printf("max      %-7d %-7d %-7d %d\n", d.max_abs[0], d.max_abs[1], d.max_abs[2], d.max_abs[3]);
         printf("mean     %-7.4f %-7.4f %-7.4f %.4f\n", d.mean_abs[0], d.mean_abs[1], d.mean_abs[2], d.mean_abs[3]);
         printf("PSNR %.2f dB over all channels; %.4f%% of pixels off by more than 1\n", d.psnr_db, d.over1_pct);
+    }
+    if (o.out && vfp_png_write(o.out, &core, err, sizeof err)) {
+        fprintf(stderr, "volfix-sim: %s\n", err);
+        status = 2;
     }
     if (o.diff) {
         uint8_t *pic = malloc(pixels * 3);

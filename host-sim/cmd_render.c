@@ -30,8 +30,8 @@ int sim_cmd_render(int argc, char **argv)
         return 2;
     }
     vf_image_t img;
-    status = o.reference ? sim_render_reference(&scene, &img, err, sizeof err)
-                         : sim_render_core(&scene, &img, err, sizeof err);
+    status = o.reference ? sim_render_reference(&scene, NULL, &img, err, sizeof err)
+                         : sim_render_core(&scene, &img, NULL, err, sizeof err);
     if (status == 0) {
         status = vfp_png_write(o.out, &img, err, sizeof err);
         sim_image_free(&img);

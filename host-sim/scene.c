@@ -67,7 +67,7 @@ void sim_image_free(vf_image_t *img)
     img->pixels = NULL;
 }
 
-int sim_render_core(const sim_scene_t *s, vf_image_t *img, char *err, size_t errlen)
+int sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, char *err, size_t errlen)
 {
     vfp_render_t r;
     if (sim_image_alloc(img, s->width, s->height, s->format)) {
@@ -81,6 +81,8 @@ int sim_render_core(const sim_scene_t *s, vf_image_t *img, char *err, size_t err
         status = vfp_render_set_tf(&r, s->points, s->npoints, err, errlen);
     if (status == 0)
         status = vfp_render_frame(&r, &s->view, img, err, errlen);
+    if (status == 0 && factor)
+        *factor = *vf_render_factor(r.core);
     vfp_render_close(&r);
     if (status)
         sim_image_free(img);
@@ -89,7 +91,8 @@ int sim_render_core(const sim_scene_t *s, vf_image_t *img, char *err, size_t err
 
 /* The reference gets the same inputs the core gets: the spacing, view and transfer function as quantised
  * for the core, and it windows the raw voxels itself. */
-int sim_render_reference(const sim_scene_t *s, vf_image_t *img, char *err, size_t errlen)
+int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, vf_image_t *img, char *err,
+                         size_t errlen)
 {
     const vf_volume_t *cv = &s->vol.core;
     int dims[3] = {(int)cv->dims[0], (int)cv->dims[1], (int)cv->dims[2]};
@@ -113,9 +116,22 @@ int sim_render_reference(const sim_scene_t *s, vf_image_t *img, char *err, size_
     ref_params_t params = {s->params.mode == VF_MODE_POINT ? REF_MODE_POINT : REF_MODE_PREINT1,
                            (int)s->params.table_size,
                            {s->params.background[0] / 65535.0, s->params.background[1] / 65535.0,
-                            s->params.background[2] / 65535.0}};
+                            s->params.background[2] / 65535.0},
+                           NULL, 0, 0};
     ref_view_t view = {s->view.azimuth, s->view.elevation, s->view.roll, s->view.zoom_q16 / 65536.0};
+    int32_t *offsets = NULL;
+    if (core_factor) {
+        offsets = malloc(sizeof(int32_t) * 2 * core_factor->nk);
+        for (uint32_t k = 0; offsets && k < core_factor->nk; k++) {
+            offsets[2 * k] = vf_factor_offset_u(core_factor, k);
+            offsets[2 * k + 1] = vf_factor_offset_v(core_factor, k);
+        }
+        params.slice_offsets_q16 = offsets;
+        params.slice_k_axis = core_factor->k_axis;
+        params.slice_k_flip = core_factor->k_flip;
+    }
     int status = ref_render(&vol, tf, (int)s->npoints, &params, &view, (int)s->width, (int)s->height, rgb, NULL);
+    free(offsets);
     if (status == 0) {
         /* the reference's colours, rounded into the output format as the core stores them */
         for (uint32_t y = 0; y < s->height; y++)
@@ -137,7 +153,10 @@ int sim_render_reference(const sim_scene_t *s, vf_image_t *img, char *err, size_
                 }
             }
     } else {
-        snprintf(err, errlen, "the reference renderer failed (status %d)", status);
+        snprintf(err, errlen, status == -2 ? "the core's factorisation disagrees with the reference's (principal axis, "
+                                             "flip or a slice offset more than 2^-16 apart)"
+                                           : "the reference renderer failed (status %d)",
+                 status);
         sim_image_free(img);
     }
     free(scalars);
@@ -149,11 +168,14 @@ void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)
 {
     const char *base = strrchr(s->vol.name, '/');
     char view[64];
-    double deg = 360.0 / VF_BAU_PER_TURN;
+    /* degrees to two decimals: the angles are quantised to 1/65536 turn, and 29.9982 would only distract */
+    double az = round(s->view.azimuth * 36000.0 / VF_BAU_PER_TURN) / 100;
+    double el = round(s->view.elevation * 36000.0 / VF_BAU_PER_TURN) / 100;
+    double roll = round(s->view.roll * 36000.0 / VF_BAU_PER_TURN) / 100;
     if (s->view.roll)
-        snprintf(view, sizeof view, "%g,%g,%g", s->view.azimuth * deg, s->view.elevation * deg, s->view.roll * deg);
+        snprintf(view, sizeof view, "%g,%g,%g", az, el, roll);
     else
-        snprintf(view, sizeof view, "%g,%g", s->view.azimuth * deg, s->view.elevation * deg);
+        snprintf(view, sizeof view, "%g,%g", az, el);
     snprintf(text, len, "%s %s %ux%u view %s zoom %g %s window %d,%d", base ? base + 1 : s->vol.name,
              vf_mode_name(s->params.mode), s->width, s->height, view, s->view.zoom_q16 / 65536.0, s->tf.name,
              s->window.lo, s->window.hi);

@@ -35,10 +35,15 @@ vf_view_t sim_view(double azimuth, double elevation, double roll, double zoom);
 int sim_image_alloc(vf_image_t *image, uint32_t width, uint32_t height, vf_format_t format);
 void sim_image_free(vf_image_t *image);
 
-/* Render with the core (threads from the scene) or the reference into an image of the scene's size and
- * format. Return 0, or 2 with err. */
-int sim_render_core(const sim_scene_t *scene, vf_image_t *image, char *err, size_t errlen);
-int sim_render_reference(const sim_scene_t *scene, vf_image_t *image, char *err, size_t errlen);
+/* Render with the core (threads from the scene) into an image of the scene's size and format; factor, if not
+ * NULL, receives the frame's factorisation. Returns 0, or 2 with err. */
+int sim_render_core(const sim_scene_t *scene, vf_image_t *image, vf_factor_t *factor, char *err, size_t errlen);
+
+/* Render with the double reference. With core_factor (from sim_render_core), the reference checks the core's
+ * slice offsets against its own and samples where the core does (ref.h explains why); without it the
+ * reference works alone. Returns 0, or 2 with err (also when the factorisations disagree). */
+int sim_render_reference(const sim_scene_t *scene, const vf_factor_t *core_factor, vf_image_t *image, char *err,
+                         size_t errlen);
 
 /* "engine.nhdr preint1 512x512 view 30,20 ramp window 0,255": what a line of output is about. */
 void sim_scene_describe(const sim_scene_t *scene, char *text, size_t len);

@@ -16,19 +16,20 @@ typedef struct preset {
 
 /* Normalised to the window. Opacity is per voxel: a slab of a few voxels at 0.3 is already mostly opaque. */
 static const preset_t presets[] = {
-    {"ramp", "opacity rises linearly from 0 to 1 over the window, white (the benchmark setting)", 2,
-     {{0.0, 1, 1, 1, 0}, {1.0, 1, 1, 1, 1}}},
+    {"ramp", "opacity and grey level rise linearly from 0 to 1 over the window (the benchmark setting)", 2,
+     {{0.0, 0, 0, 0, 0}, {1.0, 1, 1, 1, 1}}},
     {"sharp", "three narrow opacity peaks (orange, green, white): the case pre-integration exists for", 10,
      {{0.0, 0, 0, 0, 0},
       {0.29, 1, 0.5, 0.1, 0}, {0.30, 1, 0.5, 0.1, 0.9}, {0.31, 1, 0.5, 0.1, 0},
       {0.54, 0.2, 1, 0.3, 0}, {0.55, 0.2, 1, 0.3, 0.9}, {0.56, 0.2, 1, 0.3, 0},
       {0.79, 1, 1, 1, 0}, {0.80, 1, 1, 1, 1}, {0.81, 1, 1, 1, 0}}},
+    /* CT: with the default window (0.5 to 99.5 percentiles) air sits near 0, soft tissue near 0.42 and bone
+     * from about 0.55 up; the skin layer is the partial-volume ramp between air and tissue. */
     {"ct-bone", "CT: bone, ivory and opaque; soft tissue and air clear", 4,
-     {{0.0, 1, 0.95, 0.85, 0}, {0.42, 1, 0.95, 0.85, 0}, {0.6, 1, 0.95, 0.85, 0.6}, {1.0, 1, 1, 1, 0.9}}},
-    {"ct-skin-bone", "CT: translucent skin over opaque bone", 7,
-     {{0.0, 0.9, 0.6, 0.45, 0}, {0.12, 0.9, 0.6, 0.45, 0}, {0.18, 0.9, 0.6, 0.45, 0.06},
-      {0.30, 0.9, 0.6, 0.45, 0.02}, {0.42, 1, 0.95, 0.85, 0.02}, {0.6, 1, 0.95, 0.85, 0.6},
-      {1.0, 1, 1, 1, 0.9}}},
+     {{0.0, 1, 0.95, 0.85, 0}, {0.52, 1, 0.95, 0.85, 0}, {0.62, 1, 0.95, 0.85, 0.5}, {1.0, 1, 1, 1, 0.9}}},
+    {"ct-skin-bone", "CT: a thin translucent skin over opaque bone", 7,
+     {{0.0, 0.9, 0.6, 0.45, 0}, {0.30, 0.9, 0.6, 0.45, 0}, {0.35, 0.9, 0.6, 0.45, 0.08},
+      {0.40, 0.9, 0.6, 0.45, 0}, {0.52, 1, 0.95, 0.85, 0}, {0.62, 1, 0.95, 0.85, 0.5}, {1.0, 1, 1, 1, 0.9}}},
     {"mr-brain", "MR: soft opacity ramp from dark red through orange to white", 5,
      {{0.0, 0.3, 0.05, 0.05, 0}, {0.15, 0.5, 0.1, 0.05, 0}, {0.4, 0.9, 0.45, 0.2, 0.04},
       {0.7, 1, 0.85, 0.6, 0.12}, {1.0, 1, 1, 1, 0.3}}},

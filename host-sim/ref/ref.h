@@ -40,6 +40,14 @@ typedef struct ref_params {
     ref_mode_t mode;
     int table_size;       /* N, REF_MIN_TABLE..REF_MAX_TABLE */
     double background[3]; /* RGB in [0, 1] behind the volume */
+    /* Optional: the core's snapped slice offsets, (ou_k, ov_k) in Q16.16 for every standard slice k, with the
+     * principal axis and flip they belong to. Two renderers whose shears differ by 1e-9 (the core's integer
+     * sine) put about one slice a frame on neighbouring grid points, and a narrow transfer-function peak then
+     * flips there. Given the core's offsets, the reference first checks each against its own (same axis and
+     * flip, within one grid step, else ref_render returns -2) and then samples where the core does. NULL: the
+     * reference's own offsets. */
+    const int32_t *slice_offsets_q16;
+    int slice_k_axis, slice_k_flip;
 } ref_params_t;
 
 typedef struct ref_view {
@@ -64,6 +72,7 @@ typedef struct ref_factor {
     /* Warp map, final pixel (px, py) -> intermediate point: u = u0 + du_dx px + du_dy py, v likewise. For
      * information; ref_warp evaluates the spec's formula per pixel. */
     double u0, v0, du_dx, dv_dx, du_dy, dv_dy;
+    const int32_t *given_offsets_q16; /* NULL, or offsets adopted by ref_factor_adopt_offsets */
 } ref_factor_t;
 
 #define REF_MAX_DIM 4096
@@ -105,7 +114,12 @@ void ref_sincos(int32_t bau, double *s, double *c);
 
 int ref_factor(const ref_volume_t *vol, const ref_view_t *view, int out_w, int out_h, ref_factor_t *f);
 
-/* Offset (ou_k, ov_k) of standard slice k in the intermediate image, snapped to the 2^-16 grid. */
+/* Adopt another renderer's snapped offsets (2 n_k values, ou then ov, Q16.16) after checking that they belong to
+ * the same principal axis and flip and that each is within one 2^-16 grid step of this factorisation's own.
+ * Returns 0, or -2 when they disagree (the factorisations differ). The array must outlive f. */
+int ref_factor_adopt_offsets(ref_factor_t *f, const int32_t *offsets_q16, int k_axis, int k_flip);
+
+/* Offset (ou_k, ov_k) of standard slice k in the intermediate image, snapped to the 2^-16 grid (or adopted). */
 void ref_factor_offset(const ref_factor_t *f, int k, double *ou, double *ov);
 
 /* The intermediate point (u, v) that final pixel (px, py) sees (section 3, "Warp"). */

@@ -1,6 +1,8 @@
 /* ref_factor.c: the shear-warp factorisation of a parallel view and its warp map (section 3). */
 #include "ref/ref.h"
 
+#include <stddef.h>
+
 #include <math.h>
 
 #define PI 3.14159265358979323846
@@ -49,8 +51,34 @@ static double snap16(double x)
 
 void ref_factor_offset(const ref_factor_t *f, int k, double *ou, double *ov)
 {
+    if (f->given_offsets_q16) {
+        *ou = f->given_offsets_q16[2 * k] / 65536.0;
+        *ov = f->given_offsets_q16[2 * k + 1] / 65536.0;
+        return;
+    }
     *ou = snap16(f->ti + f->si * k);
     *ov = snap16(f->tj + f->sj * k);
+}
+
+int ref_factor_adopt_offsets(ref_factor_t *f, const int32_t *offsets_q16, int k_axis, int k_flip)
+{
+    if (!offsets_q16 || k_axis != f->k_axis || (k_flip != 0) != (f->k_flip != 0))
+        return -2;
+    const double step = 1.0 / 65536.0 + 1e-12;
+    double umax = 0, vmax = 0;
+    f->given_offsets_q16 = NULL;
+    for (int k = 0; k < f->nk; k++) {
+        double ou, ov, gu = offsets_q16[2 * k] / 65536.0, gv = offsets_q16[2 * k + 1] / 65536.0;
+        ref_factor_offset(f, k, &ou, &ov);
+        if (fabs(ou - gu) > step || fabs(ov - gv) > step || gu < 0 || gv < 0)
+            return -2;
+        umax = fmax(umax, gu);
+        vmax = fmax(vmax, gv);
+    }
+    f->given_offsets_q16 = offsets_q16;
+    f->int_w = (int)floor(umax) + f->ni;
+    f->int_h = (int)floor(vmax) + f->nj;
+    return 0;
 }
 
 /* u = u_c + e_x mu[0] + e_y mu[1] with mu[b] = R[b][i] / Sr_i + si sgn_k R[b][k] / Sr_k and
@@ -91,6 +119,7 @@ int ref_factor(const ref_volume_t *vol, const ref_view_t *view, int out_w, int o
     }
     if (spmax > REF_MAX_ANISOTROPY * spmin)
         return -1;
+    f->given_offsets_q16 = NULL; /* the reference's own offsets until some are adopted */
 
     *f = (ref_factor_t){0};
     f->out_w = out_w;

@@ -133,6 +133,8 @@ int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, c
     if (!vol || !vol->scalars || !p || !rgb || p->table_size < REF_MIN_TABLE || p->table_size > REF_MAX_TABLE ||
         (p->mode != REF_MODE_POINT && p->mode != REF_MODE_PREINT1) || ref_factor(vol, view, out_w, out_h, &f))
         return -1;
+    if (p->slice_offsets_q16 && ref_factor_adopt_offsets(&f, p->slice_offsets_q16, p->slice_k_axis, p->slice_k_flip))
+        return -2;
     size_t N = (size_t)p->table_size;
     size_t entries = p->mode == REF_MODE_POINT ? N : N * N;
     double *table = malloc(4 * entries * sizeof(double));

@@ -212,6 +212,37 @@ static void factor_bad_arguments(void)
     CHECK_EQ(ref_factor(&vol, &view, 16, 16, &f), -1);
 }
 
+/* Another renderer's offsets are adopted only when they belong to the same axis and flip and lie within one
+ * 2^-16 grid step of the reference's own: this is how a wrong core factorisation still shows. */
+static void factor_adopts_only_close_offsets(void)
+{
+    ref_volume_t vol = {{12, 10, 9}, {1, 1.5, 1}, NULL};
+    ref_view_t view = {5461, 3641, 0, 1}; /* 30, 20 degrees */
+    ref_factor_t f;
+    CHECK_EQ(ref_factor(&vol, &view, 64, 64, &f), 0);
+    int32_t given[2 * 12];
+    for (int k = 0; k < f.nk; k++) {
+        double ou, ov;
+        ref_factor_offset(&f, k, &ou, &ov);
+        given[2 * k] = (int32_t)lround(ou * 65536) + (k & 1); /* one grid step off on odd slices: accepted */
+        given[2 * k + 1] = (int32_t)lround(ov * 65536);
+    }
+    ref_factor_t g = f;
+    CHECK_EQ(ref_factor_adopt_offsets(&g, given, f.k_axis, f.k_flip), 0);
+    double ou, ov;
+    ref_factor_offset(&g, 1, &ou, &ov);
+    CHECK_EQ(lround(ou * 65536), given[2]);
+    g = f;
+    CHECK_EQ(ref_factor_adopt_offsets(&g, given, (f.k_axis + 1) % 3, f.k_flip), -2);
+    CHECK(g.given_offsets_q16 == NULL);
+    g = f;
+    CHECK_EQ(ref_factor_adopt_offsets(&g, given, f.k_axis, !f.k_flip), -2);
+    given[2 * 3 + 1] += 2; /* two grid steps: a different factorisation */
+    g = f;
+    CHECK_EQ(ref_factor_adopt_offsets(&g, given, f.k_axis, f.k_flip), -2);
+    CHECK(g.given_offsets_q16 == NULL);
+}
+
 /* ---- compositing on tiny volumes ---------------------------------------------------------------------- */
 
 /* Tables for f's slab and the intermediate image; returns 0 on success. inter: int_w * int_h * 4. */
@@ -253,7 +284,7 @@ static void composite_head_on_closed_form(void)
     const ref_tf_point_t tf = {0, 0.2, 0.5, 0.9, 0.3};
     /* scale 1 (zoom sqrt 3 / 4 on 4 x 4): final pixels 1..2 are intermediate pixels 0..1, 0 and 3 outside */
     ref_view_t view = {0, 0, 0, sqrt(3.0) / 4};
-    ref_params_t p = {REF_MODE_POINT, 256, {0.1, 0.2, 0.3}};
+    ref_params_t p = {REF_MODE_POINT, 256, {0.1, 0.2, 0.3}, NULL, 0, 0};
     double rgb[4 * 4 * 3], col[3] = {0.2, 0.5, 0.9};
     for (int m = 0; m < 2; m++) {
         p.mode = m ? REF_MODE_PREINT1 : REF_MODE_POINT;
@@ -442,7 +473,7 @@ static void render_symmetric_sphere_axis_views(void)
                                 {0, 16384, 0, 1.2}, {0, -16384, 0, 1.2}, {32768, 16384, 16384, 1.2}};
     static double ref_img[31 * 31 * 3], img[31 * 31 * 3];
     for (int m = 0; m < 2; m++) {
-        ref_params_t p = {m ? REF_MODE_PREINT1 : REF_MODE_POINT, 256, {0, 0, 0}};
+        ref_params_t p = {m ? REF_MODE_PREINT1 : REF_MODE_POINT, 256, {0, 0, 0}, NULL, 0, 0};
         CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &views[0], 31, 31, ref_img, NULL), 0);
         for (int n = 1; n < 7; n++) {
             ref_factor_t f;
@@ -467,7 +498,7 @@ static void render_roll_turns_image(void)
     enum { W = 24 };
     static double a[W * W * 3], b[W * W * 3];
     for (int m = 0; m < 2; m++) {
-        ref_params_t p = {m ? REF_MODE_PREINT1 : REF_MODE_POINT, 128, {0.25, 0.5, 0.75}};
+        ref_params_t p = {m ? REF_MODE_PREINT1 : REF_MODE_POINT, 128, {0.25, 0.5, 0.75}, NULL, 0, 0};
         ref_view_t v0 = {1234, 567, 0, 1.3}, v1 = {1234, 567, 16384, 1.3};
         ref_factor_t f0, f1;
         CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &v0, W, W, a, &f0), 0);
@@ -489,7 +520,7 @@ static void render_random_views_in_range(void)
     static double img[40 * 30 * 3];
     int background_pixels = 0, volume_pixels = 0;
     for (int n = 0; n < 40; n++) {
-        ref_params_t p = {n & 1 ? REF_MODE_PREINT1 : REF_MODE_POINT, 2 + (int)(rnd() * 300), {0.2, 0.4, 0.6}};
+        ref_params_t p = {n & 1 ? REF_MODE_PREINT1 : REF_MODE_POINT, 2 + (int)(rnd() * 300), {0.2, 0.4, 0.6}, NULL, 0, 0};
         ref_view_t v = {(int32_t)(rnd() * 65536), (int32_t)(rnd() * 65536), (int32_t)(rnd() * 65536),
                         0.5 + rnd()};
         CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &v, 40, 30, img, NULL), 0);
@@ -505,7 +536,7 @@ static void render_random_views_in_range(void)
     }
     CHECK(background_pixels > 0 && volume_pixels > 0);
     /* bad arguments */
-    ref_params_t p = {REF_MODE_POINT, 1, {0, 0, 0}};
+    ref_params_t p = {REF_MODE_POINT, 1, {0, 0, 0}, NULL, 0, 0};
     ref_view_t v = {0, 0, 0, 1};
     CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &v, 40, 30, img, NULL), -1);
     p.table_size = 1025;
@@ -524,6 +555,7 @@ static void render_random_views_in_range(void)
 CHECK_CASES({"factor_projects_corners", factor_projects_corners},
             {"factor_principal_axis_and_ties", factor_principal_axis_and_ties},
             {"factor_bad_arguments", factor_bad_arguments},
+            {"factor_adopts_only_close_offsets", factor_adopts_only_close_offsets},
             {"composite_head_on_closed_form", composite_head_on_closed_form},
             {"composite_order_follows_view", composite_order_follows_view},
             {"composite_oblique_by_hand", composite_oblique_by_hand},

@@ -1,0 +1,112 @@
+#!/bin/sh
+# volfix-sim from the outside: usage and help, and for every kind of bad input an exit status of 2 and exactly
+# one line on stderr that names the file (and line) and says what was expected.
+cd "$(dirname "$0")/../.." || exit 2
+sim=${BUILD:-build}/volfix-sim
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+ok() { echo "ok - cli/$1"; }
+fail() { echo "not ok - cli/$1: $2"; }
+
+# expect_error NAME PHRASE ARGS...: status 2, one stderr line containing PHRASE, nothing on stdout
+expect_error() {
+    name=$1 phrase=$2
+    shift 2
+    "$sim" "$@" >"$tmp/out" 2>"$tmp/err"
+    status=$?
+    lines=$(wc -l <"$tmp/err")
+    if [ $status -ne 2 ]; then
+        fail "$name" "exit status $status, expected 2 ($(head -n 1 "$tmp/err"))"
+    elif [ "$lines" -ne 1 ]; then
+        fail "$name" "$lines lines on stderr, expected one: $(tr '\n' '|' <"$tmp/err")"
+    elif ! grep -qF -- "$phrase" "$tmp/err"; then
+        fail "$name" "stderr lacks '$phrase': $(cat "$tmp/err")"
+    elif [ -s "$tmp/out" ]; then
+        fail "$name" "unexpected output on stdout"
+    else
+        ok "$name"
+    fi
+}
+
+# usage and help
+"$sim" >/dev/null 2>"$tmp/err"
+[ $? -eq 2 ] && grep -q '^usage: volfix-sim COMMAND' "$tmp/err" && ok "no arguments print usage, status 2" ||
+    fail "no arguments" "expected usage on stderr and status 2"
+for cmd in render compare bench; do
+    if "$sim" $cmd --help >"$tmp/out" 2>&1 && grep -q "^usage: volfix-sim $cmd" "$tmp/out" &&
+        grep -q -- '--preset' "$tmp/out"; then
+        ok "$cmd --help"
+    else
+        fail "$cmd --help" "$(head -n 2 "$tmp/out")"
+    fi
+done
+expect_error "unknown command" "unknown command 'paint'" paint
+expect_error "unknown option" "--colour: unknown option" render phantom:sphere:8 --colour red -o "$tmp/x.png"
+expect_error "bad mode" "--mode lines: expected point or preint1" render phantom:sphere:8 --mode lines -o "$tmp/x.png"
+expect_error "bad view" "--view 30: expected AZ,EL" render phantom:sphere:8 --view 30 -o "$tmp/x.png"
+expect_error "bad size" "--size 0x10: expected WxH" render phantom:sphere:8 --size 0x10 -o "$tmp/x.png"
+expect_error "bad format" "--format bgr: expected rgb888, rgb565 or xrgb8888" render phantom:sphere:8 --format bgr -o "$tmp/x.png"
+expect_error "bad zoom" "--zoom 0: expected a number" render phantom:sphere:8 --zoom 0 -o "$tmp/x.png"
+expect_error "bad table size" "--table-size 4096: expected an integer from 2 to 1024" render phantom:sphere:8 --table-size 4096 -o "$tmp/x.png"
+expect_error "no output" "no output file" render phantom:sphere:8
+expect_error "no volume" "no volume given" compare --json
+expect_error "preset and tf" "give --preset or --tf, not both" render phantom:sphere:8 --preset ramp --tf x -o "$tmp/x.png"
+
+# bad volumes
+printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n' >"$tmp/trunc.nrrd"
+head -c 40 /dev/zero >>"$tmp/trunc.nrrd"
+expect_error "truncated data" "trunc.nrrd: truncated: expected 64 bytes of voxel data, found 40" render "$tmp/trunc.nrrd" -o "$tmp/x.png"
+printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n' >"$tmp/long.nrrd"
+head -c 65 /dev/zero >>"$tmp/long.nrrd"
+expect_error "size mismatch" "long.nrrd: expected 64 bytes of voxel data, found 65" render "$tmp/long.nrrd" -o "$tmp/x.png"
+printf 'NRRD0004\ntype: uint8\ndimension 3\n' >"$tmp/line.nrrd"
+expect_error "bad header line" "line.nrrd:3: expected 'field: value'" render "$tmp/line.nrrd" -o "$tmp/x.png"
+printf 'NRRD0004\ntype: float\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n' >"$tmp/float.nrrd"
+expect_error "unsupported type" "float.nrrd:2: unsupported type 'float'" render "$tmp/float.nrrd" -o "$tmp/x.png"
+printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: bzip2\n\n' >"$tmp/bz.nrrd"
+expect_error "unsupported encoding" "bz.nrrd:5: unsupported encoding 'bzip2'" render "$tmp/bz.nrrd" -o "$tmp/x.png"
+head -c 64 /dev/urandom | gzip -c | head -c 20 >"$tmp/cut.raw.gz"
+printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: gzip\ndata file: cut.raw.gz\n' >"$tmp/cut.nhdr"
+expect_error "gzip error" "cut.raw.gz: gzip error" render "$tmp/cut.nhdr" -o "$tmp/x.png"
+printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: raw\ndata file: gone.raw\n' >"$tmp/lost.nhdr"
+expect_error "missing data file" "lost.nhdr:6: cannot open data file" render "$tmp/lost.nhdr" -o "$tmp/x.png"
+expect_error "missing file" "nowhere.nrrd" render "$tmp/nowhere.nrrd" -o "$tmp/x.png"
+head -c 64 /dev/zero >"$tmp/voxels.raw"
+expect_error "raw without dims" "voxels.raw: raw data needs --dims" render "$tmp/voxels.raw" -o "$tmp/x.png"
+expect_error "raw size mismatch" "voxels.raw: truncated: expected 128 bytes" render "$tmp/voxels.raw" --dims 4,4,4 --type uint16 -o "$tmp/x.png"
+expect_error "bad dims" "--dims" render "$tmp/voxels.raw" --dims 4,4 --type uint8 -o "$tmp/x.png"
+expect_error "bad phantom" "unknown phantom 'cube'" render phantom:cube:16 -o "$tmp/x.png"
+head -c 348 /dev/zero >"$tmp/empty.nii"
+expect_error "bad nifti header" "empty.nii" render "$tmp/empty.nii" -o "$tmp/x.png"
+
+# bad transfer functions and windows
+printf '# a comment\n0 0 0 0 0\n0.5 1 1 1\n' >"$tmp/short.tf"
+expect_error "tf short line" "short.tf:3: expected a control point 'scalar r g b a'" render phantom:sphere:8 --tf "$tmp/short.tf" -o "$tmp/x.png"
+printf '0.5 0 0 0 0\n0.2 1 1 1 1\n' >"$tmp/down.tf"
+expect_error "tf decreasing" "down.tf:2: scalar 0.2 is below the previous point's 0.5" render phantom:sphere:8 --tf "$tmp/down.tf" -o "$tmp/x.png"
+printf '0 0 0 0 0\n1 1 1 1 1.5\n' >"$tmp/big.tf"
+expect_error "tf out of range" "big.tf:2: colour and opacity must be within [0, 1]" render phantom:sphere:8 --tf "$tmp/big.tf" -o "$tmp/x.png"
+expect_error "unknown preset" "unknown preset 'bones'" render phantom:sphere:8 --preset bones -o "$tmp/x.png"
+expect_error "bad window" "--window" render phantom:sphere:8 --window 5 -o "$tmp/x.png"
+
+# good runs
+if "$sim" render phantom:sphere:16 --size 64x48 -o "$tmp/s.png" >"$tmp/out" 2>&1 &&
+    [ "$(head -c 4 "$tmp/s.png" | od -An -tx1 | tr -d ' ')" = 89504e47 ] && grep -q 's.png: phantom:sphere:16' "$tmp/out"; then
+    ok "render writes a PNG and says what it rendered"
+else
+    fail "render" "$(cat "$tmp/out")"
+fi
+if "$sim" compare phantom:marschner-lobb:24 --size 64x64 --json >"$tmp/out" 2>&1 &&
+    grep -q '"psnr_db": ' "$tmp/out" && grep -q '"max_abs": ' "$tmp/out" && grep -q '"mean_abs": ' "$tmp/out" &&
+    grep -q '"over1_pct": ' "$tmp/out"; then
+    ok "compare --json has psnr_db, max_abs, mean_abs, over1_pct"
+else
+    fail "compare --json" "$(cat "$tmp/out")"
+fi
+if "$sim" bench phantom:sphere:24 --size 64x64 --frames 3 --json >"$tmp/out" 2>&1 &&
+    grep -q '"ms_per_frame": ' "$tmp/out" && grep -q '"frames": 3' "$tmp/out"; then
+    ok "bench --json reports ms_per_frame over the frames asked"
+else
+    fail "bench --json" "$(cat "$tmp/out")"
+fi
