@@ -56,8 +56,10 @@ int sim_cmd_bench(int argc, char **argv)
         status = vfp_render_set_tf(&r, s.points, s.npoints, err, sizeof err);
         classify_ms = r.ms_classify;
     }
-    if (status == 0)
-        status = vfp_render_frame(&r, &s.view, &img, err, sizeof err); /* warm-up */
+    if (status == 0) { /* warm-up, one step before the first timed view, so that every timed frame is a new view */
+        vf_view_t before = sim_view(o.azimuth - 2.0, o.elevation, o.roll, o.zoom);
+        status = vfp_render_frame(&r, &before, &img, err, sizeof err);
+    }
     for (int f = 0; status == 0 && f < o.frames; f++) {
         vf_view_t v = sim_view(o.azimuth + 2.0 * f, o.elevation, o.roll, o.zoom);
         double t0 = vfp_now_ms();
