@@ -18,7 +18,7 @@ size_t vfi_classify_bytes(uint32_t n)
            vfi_arena_block(sizeof(uint32_t) * (n - 1) * 3) + vfi_arena_block(sizeof(uint16_t) * (n + 1));
 }
 
-vf_status_t vfi_classify_alloc(vfi_classify_t *cls, uint32_t n, vf_arena_t *arena)
+vf_status_t vfi_classify_alloc(vfi_classify_t *cls, uint32_t n, vf_lookup_t lookup, vf_arena_t *arena)
 {
     cls->n = n;
     cls->tau_q28 = vfi_arena_alloc(arena, sizeof(uint32_t) * n);
@@ -27,8 +27,13 @@ vf_status_t vfi_classify_alloc(vfi_classify_t *cls, uint32_t n, vf_arena_t *aren
     cls->visible_before = vfi_arena_alloc(arena, sizeof(uint16_t) * (n + 1));
     if (!cls->tau_q28 || !cls->colour_q30 || !cls->weight_q30 || !cls->visible_before)
         return VF_ERR_NOMEM;
-    for (uint32_t v = 0; v < 256; v++)
-        cls->entry_of_scalar[v] = (uint16_t)((v * (n - 1) * 2 + 255) / 510); /* round(v (N - 1) / 255) */
+    const uint32_t margin = lookup == VF_LOOKUP_BILINEAR ? 1 : 0;
+    for (uint32_t v = 0; v < 256; v++) {
+        uint32_t e = (v * (n - 1) * 2 + 255) / 510; /* round(v (N - 1) / 255) */
+        cls->entry_of_scalar[v] = (uint16_t)e;
+        cls->first_of_scalar[v] = (uint16_t)(e >= margin ? e - margin : 0);
+        cls->end_of_scalar[v] = (uint16_t)(e + 1 + margin <= n ? e + 1 + margin : n);
+    }
     return VF_OK;
 }
 

@@ -15,11 +15,15 @@ typedef struct vfi_classify {
     uint32_t *weight_q30;          /* [(n - 1) * 3] extinction-weighted mean colour of interval m, Q.30 */
     uint16_t *visible_before;      /* [n + 1] how many entries below i have tau > 0 */
     uint16_t entry_of_scalar[256]; /* entry of each 8-bit voxel scalar (the same rounding as samples) */
+    /* The entries a sample between scalars lo and hi can touch are first_of_scalar[lo] .. end_of_scalar[hi] - 1:
+     * its nearest entry, widened by one on each side for bilinear lookups (which also read the next entry). */
+    uint16_t first_of_scalar[256];
+    uint16_t end_of_scalar[256];
 } vfi_classify_t;
 
 /* Bytes vfi_classify_alloc takes from an arena for n entries. */
 size_t vfi_classify_bytes(uint32_t n);
-vf_status_t vfi_classify_alloc(vfi_classify_t *cls, uint32_t n, vf_arena_t *arena);
+vf_status_t vfi_classify_alloc(vfi_classify_t *cls, uint32_t n, vf_lookup_t lookup, vf_arena_t *arena);
 
 /* Checks the transfer function and fills cls (allocated for its n). */
 vf_status_t vfi_classify(vfi_classify_t *cls, const vf_tf_t *tf);
@@ -29,15 +33,24 @@ vf_status_t vfi_classify(vfi_classify_t *cls, const vf_tf_t *tf);
  * between two entries must go the way the reference's goes, or a narrow transfer-function peak flips. */
 static inline uint32_t vfi_entry_of_sample(const vfi_classify_t *cls, uint64_t sample_q32)
 {
+    if (cls->n == 256) /* the default: an entry per scalar, round(s) */
+        return (uint32_t)((sample_q32 + (UINT64_C(1) << 31)) >> 32);
     uint64_t x = sample_q32 * (cls->n - 1) + UINT64_C(255) * (UINT64_C(1) << 31);
     return (uint32_t)(x >> 32) / 255u;
 }
 
-/* Whether any entry in [lo, hi] of the 8-bit scalar range is visible (has tau > 0). */
+/* Whether a segment whose samples lie between 8-bit scalars lo and hi can touch a visible entry (tau > 0). */
 static inline bool vfi_range_visible(const vfi_classify_t *cls, uint32_t scalar_lo, uint32_t scalar_hi)
 {
-    return cls->visible_before[cls->entry_of_scalar[scalar_hi] + 1] !=
-           cls->visible_before[cls->entry_of_scalar[scalar_lo]];
+    return cls->visible_before[cls->end_of_scalar[scalar_hi]] != cls->visible_before[cls->first_of_scalar[scalar_lo]];
+}
+
+/* Table position of a sample in Q8.32 for a bilinear lookup: x = s (N - 1) / 255 in Q.16, within 2^-12 of exact
+ * (the fraction only weights two entries; which entries, near an entry, is the nearest lookup's exact job). */
+static inline uint32_t vfi_position_of_sample(const vfi_classify_t *cls, uint64_t sample_q32)
+{
+    uint64_t x_q12 = (sample_q32 * (cls->n - 1)) >> 20; /* s (N - 1) in Q.12, below 2^30 */
+    return (uint32_t)((x_q12 * UINT64_C(1052688)) >> 24); /* 1052688 = 2^28 / 255 */
 }
 
 #endif

@@ -1,19 +1,20 @@
 /*
  * composite.c: slabs front to back into the intermediate image, one band of intermediate rows at a time
- * (docs/algorithm.md, section 4).
+ * (docs/algorithm.md, sections 4 and 4b).
  *
- * For each slab (or slice, in point mode), each row of the band is walked only where the run-length encoding
- * says a cell is visible, and only over pixels that are not yet opaque (skip links). Samples are bilinear in
- * the slice and exact: the slice offsets lie on the 2^-16 grid, so a sample is a multiple of 2^-32 and fits
- * Q8.32, and its table entry is the one the double reference picks. The back sample's entry is kept in a buffer
- * slice and reused as the front sample's entry of the next slab.
+ * For each slab (or slice, in the order-0 modes) each row of the band is walked only where the run-length
+ * encoding says a cell is visible, and only over pixels that are not yet opaque (skip links). Samples are
+ * bilinear in the slice and exact: the slice offsets lie on the 2^-16 grid, so a sample is a multiple of 2^-32
+ * and fits Q8.32, and its nearest table entry is the one the double reference picks. The back sample's table
+ * position is kept in a buffer and reused as the next slab's front sample.
  *
  * Scratch per band (caller's memory, so that bands can run on threads at once):
- *   next      [rows][int_w + 1]    skip links: next[u] == u for an open pixel, else a pixel further right
- *   buffers   2 x [rows][n_i + 1]  buffer slices of the current front and back slice (preint1 only)
+ *   next     [rows][int_w + 1]      skip links: next[u] == u for an open pixel, else a pixel further right
+ *   buffers  preint1 only: slice-sized, two of [rows][n_i + 1] indexed by slice column (front, back), or
+ *            image-sized, one of [rows][int_w] indexed by pixel and updated in place
  */
 #include "arena.h"
-#include "render.h"
+#include "segment.h"
 
 #define SCRATCH_ALIGN 16
 
@@ -39,17 +40,19 @@ typedef struct run_merge {
     bool live[2];
 } run_merge_t;
 
-/* What one row of one slab needs. */
+/* What one row of one slab (or slice) needs. */
 typedef struct row_job {
-    const slice_place_t *front, *back; /* back is NULL in point mode */
-    uint32_t t;                 /* standard slice (point) or slab (preint1) */
-    const uint16_t *table;
-    const vfi_classify_t *cls;
-    uint32_t n;                 /* table entries */
-    uint32_t row;               /* bytes per slice row */
-    const uint8_t *row_data;    /* the front (point: the) slice's row under this intermediate row */
+    const slice_place_t *front, *back; /* back is NULL in the order-0 modes */
+    const uint8_t *row_data;           /* the front (order 0: the) slice's row under this intermediate row */
     const uint8_t *back_row_data;
+    uint32_t row;                      /* bytes per slice row */
+    uint32_t t;                        /* standard slice (order 0) or slab (preint1) */
+    const vfi_classify_t *cls;
+    vfi_lookup_ctx_t lookup;
+    bool plain;                        /* nearest lookup, 16-bit table, no lut: the fast path */
+    bool bilinear;
     vfi_sample_t *front_buf, *back_buf;
+    int32_t front_shift, back_shift;   /* buffer index = u - shift */
     uint16_t *next;
     uint16_t *pixels;
 } row_job_t;
@@ -58,16 +61,18 @@ static void place_slice(const vf_renderer_t *r, uint32_t t, slice_place_t *p);
 static void merge_init(run_merge_t *m, const uint16_t *p0, const uint16_t *e0, int32_t pos0, const uint16_t *p1,
                        const uint16_t *e1, int32_t pos1);
 static bool merge_next(run_merge_t *m, int32_t *a, int32_t *b);
-static void row_point(const row_job_t *job, run_merge_t *m);
+static void row_order0(const row_job_t *job, run_merge_t *m, bool preclass);
 static void row_preint1(const row_job_t *job, run_merge_t *m);
 static unsigned char *align_up(unsigned char *p);
 
 size_t vfi_band_scratch_bytes(const vf_renderer_t *r, uint32_t rows)
 {
     size_t bytes = 2 * SCRATCH_ALIGN + sizeof(uint16_t) * rows * ((size_t)r->max_int_w + 1);
-    if (r->params.mode == VF_MODE_PREINT1)
-        bytes += 2 * sizeof(vfi_sample_t) * rows * ((size_t)r->max_ni + 1) + SCRATCH_ALIGN;
-    return bytes;
+    if (r->params.mode != VF_MODE_PREINT1)
+        return bytes;
+    if (r->params.buffer == VF_BUFFER_IMAGE)
+        return bytes + SCRATCH_ALIGN + sizeof(vfi_sample_t) * rows * (size_t)r->max_int_w;
+    return bytes + SCRATCH_ALIGN + 2 * sizeof(vfi_sample_t) * rows * ((size_t)r->max_ni + 1);
 }
 
 vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes)
@@ -75,21 +80,22 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     const vf_factor_t *f = &r->factor;
     const vfi_layout_t *l = &r->layout[f->k_axis];
     const uint32_t rows = v1 - v0, width = f->int_w;
+    const bool image_buffer = r->params.buffer == VF_BUFFER_IMAGE;
     if (bytes < vfi_band_scratch_bytes(r, rows))
         return VF_ERR_NOMEM;
 
-    /* Carve the scratch; open every pixel; clear the band of the intermediate image. */
+    /* Carve the scratch; open every pixel; no buffered sample belongs to any slice yet; clear the band. */
     uint16_t *next = (uint16_t *)align_up(scratch);
     for (uint32_t y = 0; y < rows; y++)
         for (uint32_t u = 0; u <= width; u++)
             next[(size_t)y * (width + 1) + u] = (uint16_t)u;
     vfi_sample_t *buf[2] = {NULL, NULL};
+    size_t buf_row = image_buffer ? width : l->ni + 1;
     if (r->params.mode == VF_MODE_PREINT1) {
-        size_t per = (size_t)rows * (l->ni + 1);
         buf[0] = (vfi_sample_t *)align_up((unsigned char *)(next + (size_t)rows * (width + 1)));
-        buf[1] = buf[0] + per;
-        for (size_t e = 0; e < 2 * per; e++)
-            buf[0][e].slice = VFI_NO_SLICE;
+        buf[1] = image_buffer ? buf[0] : buf[0] + rows * buf_row;
+        for (size_t e = 0; e < (image_buffer ? 1u : 2u) * rows * buf_row; e++)
+            buf[0][e] = VFI_NO_SLICE;
     }
     uint16_t *band = r->intermediate + (size_t)v0 * width * 4;
     for (size_t e = 0; e < (size_t)rows * width * 4; e++)
@@ -98,13 +104,15 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     row_job_t job;
     vfi_zero(&job, sizeof job);
     job.cls = &r->cls;
-    job.n = r->cls.n;
     job.row = l->row;
+    job.lookup = r->lookup;
+    job.bilinear = r->params.lookup == VF_LOOKUP_BILINEAR;
+    job.plain = !job.bilinear && job.lookup.q15 && !job.lookup.lut_f;
     const vfi_runs_t *runs = &r->runs[f->k_axis];
     slice_place_t place[2];
 
-    if (r->params.mode == VF_MODE_POINT) {
-        job.table = r->point_table;
+    if (r->params.mode != VF_MODE_PREINT1) {
+        const bool preclass = r->params.mode == VF_MODE_PRECLASS;
         for (uint32_t t = 0; t < l->nk; t++) {
             place_slice(r, t, &place[0]);
             uint32_t ks = f->k_flip ? l->nk - 1 - t : t;
@@ -120,13 +128,12 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
                 job.next = next + (size_t)(v - (int32_t)v0) * (width + 1);
                 job.pixels = r->intermediate + (size_t)v * width * 4;
                 job.row_data = place[0].data + (size_t)(v - place[0].cv) * l->row;
-                row_point(&job, &m);
+                row_order0(&job, &m, preclass);
             }
         }
         return VF_OK;
     }
 
-    job.table = r->preint_table;
     place_slice(r, 0, &place[0]);
     for (uint32_t t = 0; t + 1 < l->nk; t++) {
         const slice_place_t *front = &place[t & 1];
@@ -140,6 +147,8 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
         job.front = front;
         job.back = back;
         job.t = t;
+        job.front_shift = image_buffer ? 0 : front->cu;
+        job.back_shift = image_buffer ? 0 : back->cu;
         for (int32_t v = lo; v <= hi; v++) {
             const uint16_t *end_f, *p_f = vfi_runs_row(runs, kc, (uint32_t)(v - front->cv), &end_f);
             const uint16_t *end_b, *p_b = vfi_runs_row(runs, kc, (uint32_t)(v - back->cv), &end_b);
@@ -148,8 +157,8 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
             size_t band_row = (size_t)(v - (int32_t)v0);
             job.next = next + band_row * (width + 1);
             job.pixels = r->intermediate + (size_t)v * width * 4;
-            job.front_buf = buf[t & 1] + band_row * (l->ni + 1);
-            job.back_buf = buf[(t + 1) & 1] + band_row * (l->ni + 1);
+            job.front_buf = buf[image_buffer ? 0 : t & 1] + band_row * buf_row;
+            job.back_buf = buf[image_buffer ? 0 : (t + 1) & 1] + band_row * buf_row;
             job.row_data = front->data + (size_t)(v - front->cv) * l->row;
             job.back_row_data = back->data + (size_t)(v - back->cv) * l->row;
             row_preint1(&job, &m);
@@ -176,14 +185,20 @@ static void place_slice(const vf_renderer_t *r, uint32_t t, slice_place_t *p)
     p->data = r->slices[f->k_axis] + (size_t)ks * l->slice;
 }
 
-/* Table entry of the bilinear sample at p (column i of a slice row): the sample exactly, in Q8.32. */
-static inline uint32_t sample_entry(const vfi_classify_t *cls, const uint8_t *p, uint32_t row,
-                                    const slice_place_t *sl)
+/* The bilinear sample at p (column i of a slice row), exactly, in Q8.32: lerps as a + (b - a) f, three
+ * multiplications. */
+static inline uint64_t sample_q32(const uint8_t *p, uint32_t row, const slice_place_t *sl)
 {
-    uint32_t top = p[0] * (65536u - sl->fx) + p[1] * sl->fx;             /* Q8.16 */
-    uint32_t bottom = p[row] * (65536u - sl->fx) + p[row + 1] * sl->fx;
-    uint64_t s = (uint64_t)top * (65536u - sl->fy) + (uint64_t)bottom * sl->fy; /* Q8.32 */
-    return vfi_entry_of_sample(cls, s);
+    int32_t top = (int32_t)(p[0] << 16) + ((int32_t)p[1] - (int32_t)p[0]) * (int32_t)sl->fx; /* Q8.16 */
+    int32_t bottom = (int32_t)(p[row] << 16) + ((int32_t)p[row + 1] - (int32_t)p[row]) * (int32_t)sl->fx;
+    return (uint64_t)((int64_t)top * 65536 + (int64_t)(bottom - top) * (int64_t)sl->fy);
+}
+
+/* Where a sample goes in the table: its nearest entry, or (bilinear) its position in Q.16. */
+static inline uint32_t table_position(const row_job_t *job, const uint8_t *p, const slice_place_t *sl)
+{
+    uint64_t s = sample_q32(p, job->row, sl);
+    return job->bilinear ? vfi_position_of_sample(job->cls, s) : vfi_entry_of_sample(job->cls, s);
 }
 
 /* The first open pixel at or after u; halves the path it walked, so that runs of opaque pixels cost
@@ -198,20 +213,40 @@ static inline uint32_t next_open(uint16_t *next, uint32_t u)
     return u;
 }
 
-/* Front to back: C += (1 - A) C_seg, A += (1 - A) a_seg. True when the pixel became opaque. */
-static inline bool blend(uint16_t *px, const uint16_t *e)
+/* Order 0: a slice sample's entry (point), or the interpolation of its four voxels' entries (preclass). */
+static void segment_order0(const row_job_t *job, const uint8_t *p, bool preclass, uint32_t seg[4])
 {
-    uint32_t t = VFI_ONE_Q15 - px[3];
-    px[0] = (uint16_t)(px[0] + ((t * e[0] + 0x4000u) >> 15));
-    px[1] = (uint16_t)(px[1] + ((t * e[1] + 0x4000u) >> 15));
-    px[2] = (uint16_t)(px[2] + ((t * e[2] + 0x4000u) >> 15));
-    px[3] = (uint16_t)(px[3] + ((t * e[3] + 0x4000u) >> 15));
-    return px[3] >= VFI_OPAQUE_Q15;
+    const vfi_lookup_ctx_t *c = &job->lookup;
+    const slice_place_t *sl = job->front;
+    if (preclass) {
+        uint32_t e[4][4];
+        const uint16_t *entry = job->cls->entry_of_scalar;
+        vfi_fetch(c, entry[p[0]], e[0]);
+        vfi_fetch(c, entry[p[1]], e[1]);
+        vfi_fetch(c, entry[p[job->row]], e[2]);
+        vfi_fetch(c, entry[p[job->row + 1]], e[3]);
+        vfi_lerp(e[0], e[1], sl->fx);
+        vfi_lerp(e[2], e[3], sl->fx);
+        vfi_lerp(e[0], e[2], sl->fy);
+        for (int k = 0; k < 4; k++)
+            seg[k] = e[0][k];
+    } else if (job->bilinear) {
+        uint32_t i, f, next_entry[4];
+        vfi_split_position(c->n, table_position(job, p, sl), &i, &f);
+        vfi_fetch(c, i, seg);
+        vfi_fetch(c, i + 1, next_entry);
+        vfi_lerp(seg, next_entry, f);
+    } else {
+        vfi_fetch(c, table_position(job, p, sl), seg);
+    }
+    if (c->lut_f)
+        vfi_correct(c, seg);
 }
 
-static void row_point(const row_job_t *job, run_merge_t *m)
+static void row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
 {
     const slice_place_t *sl = job->front;
+    const bool plain = job->plain && !preclass;
     int32_t a, b;
     while (merge_next(m, &a, &b)) {
         a = a > sl->u_lo ? a : sl->u_lo;
@@ -220,17 +255,50 @@ static void row_point(const row_job_t *job, run_merge_t *m)
             continue;
         for (uint32_t u = next_open(job->next, (uint32_t)a); u < (uint32_t)b; u = next_open(job->next, u + 1)) {
             const uint8_t *p = job->row_data + (u - (uint32_t)sl->cu);
-            const uint16_t *e = job->table + sample_entry(job->cls, p, job->row, sl) * 4;
-            if (e[3] && blend(job->pixels + (size_t)u * 4, e))
+            uint16_t *px = job->pixels + (size_t)u * 4;
+            bool opaque;
+            if (plain) {
+                const uint16_t *e = job->lookup.q15 + (size_t)vfi_entry_of_sample(job->cls, sample_q32(p, job->row, sl)) * 4;
+                opaque = e[3] && vfi_blend_q15(px, e);
+            } else {
+                uint32_t seg[4];
+                segment_order0(job, p, preclass, seg);
+                opaque = seg[3] && vfi_blend(px, seg);
+            }
+            if (opaque)
                 job->next[u] = (uint16_t)(u + 1);
         }
     }
 }
 
+/* Order 1: the 2D entry of a slab from its front and back table positions. */
+static void segment_preint1(const row_job_t *job, uint32_t pos_f, uint32_t pos_b, uint32_t seg[4])
+{
+    const vfi_lookup_ctx_t *c = &job->lookup;
+    const size_t n = c->n;
+    if (job->bilinear) {
+        uint32_t i, fi, j, fj, e[3][4];
+        vfi_split_position(c->n, pos_f, &i, &fi);
+        vfi_split_position(c->n, pos_b, &j, &fj);
+        vfi_fetch(c, i * n + j, seg);
+        vfi_fetch(c, (i + 1) * n + j, e[0]);
+        vfi_fetch(c, i * n + j + 1, e[1]);
+        vfi_fetch(c, (i + 1) * n + j + 1, e[2]);
+        vfi_lerp(seg, e[0], fi);
+        vfi_lerp(e[1], e[2], fi);
+        vfi_lerp(seg, e[1], fj);
+    } else {
+        vfi_fetch(c, pos_f * n + pos_b, seg);
+    }
+    if (c->lut_f)
+        vfi_correct(c, seg);
+}
+
 static void row_preint1(const row_job_t *job, run_merge_t *m)
 {
     const slice_place_t *fr = job->front, *bk = job->back;
-    const uint16_t front_slice = (uint16_t)job->t, back_slice = (uint16_t)(job->t + 1);
+    const uint64_t front_slice = job->t, back_tag = (uint64_t)(job->t + 1) << 32;
+    const uint32_t n = job->lookup.n;
     int32_t a, b;
     int32_t lo = fr->u_lo > bk->u_lo ? fr->u_lo : bk->u_lo;
     int32_t hi = fr->u_hi < bk->u_hi ? fr->u_hi : bk->u_hi;
@@ -240,15 +308,33 @@ static void row_preint1(const row_job_t *job, run_merge_t *m)
         if (a >= b)
             continue;
         for (uint32_t u = next_open(job->next, (uint32_t)a); u < (uint32_t)b; u = next_open(job->next, u + 1)) {
-            uint32_t i_f = u - (uint32_t)fr->cu, i_b = u - (uint32_t)bk->cu;
-            const vfi_sample_t *fs = &job->front_buf[i_f];
-            uint32_t ef = fs->slice == front_slice ? fs->entry : sample_entry(job->cls, job->row_data + i_f, job->row, fr);
-            uint32_t eb = sample_entry(job->cls, job->back_row_data + i_b, job->row, bk);
-            job->back_buf[i_b].entry = (uint16_t)eb;
-            job->back_buf[i_b].slice = back_slice;
-            uint32_t entry = ef * job->n + eb;
-            const uint16_t *e = job->table + (size_t)entry * 4;
-            if (e[3] && blend(job->pixels + (size_t)u * 4, e))
+            /* The front sample was buffered as the last slab's back sample, unless that slab skipped this
+             * pixel; the slice tag says which. With an image-sized buffer front and back are the same word.
+             * Nearest positions are kept times N: the front entry's row in the 2D table. */
+            vfi_sample_t front = job->front_buf[(int32_t)u - job->front_shift];
+            uint32_t pos_f = (uint32_t)front, pos_b;
+            if (job->bilinear) {
+                if ((front >> 32) != front_slice)
+                    pos_f = vfi_position_of_sample(job->cls, sample_q32(job->row_data + (u - (uint32_t)fr->cu), job->row, fr));
+                pos_b = vfi_position_of_sample(job->cls, sample_q32(job->back_row_data + (u - (uint32_t)bk->cu), job->row, bk));
+                job->back_buf[(int32_t)u - job->back_shift] = back_tag | pos_b;
+            } else {
+                if ((front >> 32) != front_slice)
+                    pos_f = n * vfi_entry_of_sample(job->cls, sample_q32(job->row_data + (u - (uint32_t)fr->cu), job->row, fr));
+                pos_b = vfi_entry_of_sample(job->cls, sample_q32(job->back_row_data + (u - (uint32_t)bk->cu), job->row, bk));
+                job->back_buf[(int32_t)u - job->back_shift] = back_tag | (pos_b * n);
+            }
+            uint16_t *px = job->pixels + (size_t)u * 4;
+            bool opaque;
+            if (job->plain) {
+                const uint16_t *e = job->lookup.q15 + ((size_t)pos_f + pos_b) * 4;
+                opaque = e[3] && vfi_blend_q15(px, e);
+            } else {
+                uint32_t seg[4];
+                segment_preint1(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg);
+                opaque = seg[3] && vfi_blend(px, seg);
+            }
+            if (opaque)
                 job->next[u] = (uint16_t)(u + 1);
         }
     }
@@ -268,8 +354,8 @@ static bool stream_next(run_stream_t *s, int32_t *a, int32_t *b)
 static void merge_init(run_merge_t *m, const uint16_t *p0, const uint16_t *e0, int32_t pos0, const uint16_t *p1,
                        const uint16_t *e1, int32_t pos1)
 {
-    m->s[0] = (run_stream_t){p0, e0, pos0};
-    m->s[1] = (run_stream_t){p1, e1, pos1};
+    m->s[0].p = p0, m->s[0].end = e0, m->s[0].pos = pos0;
+    m->s[1].p = p1, m->s[1].end = e1, m->s[1].pos = pos1;
     m->live[0] = stream_next(&m->s[0], &m->a[0], &m->b[0]);
     m->live[1] = stream_next(&m->s[1], &m->a[1], &m->b[1]);
 }

@@ -27,6 +27,7 @@ typedef struct mat3 {
 static void rotation(const vf_view_t *view, mat3_t *r);
 static void matmul_q30(const mat3_t *a, const mat3_t *b, mat3_t *out);
 static int principal_axis(const mat3_t *r, const uint32_t sp[3]);
+static int64_t clamp_shear(int64_t s_q32);
 
 vf_status_t vf_factor(vf_factor_t *f, const vf_volume_t *vol, const vf_view_t *view, uint32_t out_w,
                       uint32_t out_h)
@@ -68,8 +69,8 @@ vf_status_t vf_factor(vf_factor_t *f, const vf_volume_t *vol, const vf_view_t *v
 
     /* Shear si = -d_i / |d_k| = -(R[2][i] sp_k) / (|R[2][k]| sp_i); the spacings' common unit cancels. */
     int64_t dk = (int64_t)(r[2][ka] < 0 ? -r[2][ka] : r[2][ka]);
-    f->si_q32 = -vfi_ratio_q32((int64_t)r[2][ia] * sp[ka], dk * sp[ia]);
-    f->sj_q32 = -vfi_ratio_q32((int64_t)r[2][ja] * sp[ka], dk * sp[ja]);
+    f->si_q32 = clamp_shear(-vfi_ratio_q32((int64_t)r[2][ia] * sp[ka], dk * sp[ia]));
+    f->sj_q32 = clamp_shear(-vfi_ratio_q32((int64_t)r[2][ja] * sp[ka], dk * sp[ja]));
     int64_t last = (int64_t)f->nk - 1;
     f->ti_q32 = f->si_q32 < 0 ? -f->si_q32 * last : 0;
     f->tj_q32 = f->sj_q32 < 0 ? -f->sj_q32 * last : 0;
@@ -94,15 +95,21 @@ vf_status_t vf_factor(vf_factor_t *f, const vf_volume_t *vol, const vf_view_t *v
     uint32_t slab_q24 = vfi_sqrt64_round((uint64_t)(ci * ci) + (uint64_t)(cj * cj) + (uint64_t)(ck * ck));
     f->slab_q16 = (slab_q24 + 128) >> 8;
 
-    /* scale = zoom * min(W, H) / D, D = |Sr (n - 1)| the diagonal; the warp needs 1 / scale. */
-    uint64_t d2 = 0;
+    /* scale = zoom * min(W, H) / D, D = |Sr (n - 1)| the diagonal; the warp needs 1 / scale. D to 1e-9 relative:
+     * the lengths are Q32.32 (up to 2^50), so the square root is taken of their ratios to the longest. */
+    int64_t len[3], longest = 0;
     for (int a = 0; a < 3; a++) {
-        int64_t len_q12 = vfi_mul_shift_round(sr[a], (int64_t)vol->dims[a] - 1, 20);
-        d2 += (uint64_t)(len_q12 * len_q12);
+        len[a] = sr[a] * ((int64_t)vol->dims[a] - 1);
+        longest = len[a] > longest ? len[a] : longest;
     }
-    int64_t diag_q16 = (int64_t)vfi_sqrt64_round(d2) << 4;
+    uint64_t sum_q60 = 0;
+    for (int a = 0; a < 3; a++) {
+        int64_t ratio_q30 = vfi_ratio_q32(len[a], longest) >> 2;
+        sum_q60 += (uint64_t)(ratio_q30 * ratio_q30);
+    }
+    int64_t diag_q32 = vfi_mul_shift_round(longest, vfi_sqrt64_round(sum_q60), 30);
     uint32_t min_side = out_w < out_h ? out_w : out_h;
-    int64_t inv_scale_q32 = vfi_ratio_q32(diag_q16, (int64_t)view->zoom_q16 * min_side);
+    int64_t inv_scale_q32 = vfi_ratio_q32(diag_q32, ((int64_t)view->zoom_q16 * min_side) << 16);
     if (inv_scale_q32 > (INT64_C(1) << 40))
         return VF_ERR_ARG; /* over 256 voxels per output pixel: the image would be a dot */
 
@@ -187,4 +194,12 @@ static int principal_axis(const mat3_t *r, const uint32_t sp[3])
             return a;
     }
     return m;
+}
+
+/* A tie of the principal axis (within 2^-20) can make a shear 1 + 2^-20; clamped to [-1, 1] a slab's front and
+ * back samples stay in cells that share a voxel, which the run-length skipping relies on (runs.h). The
+ * projection moves by at most 2^-20 of the volume's depth. */
+static int64_t clamp_shear(int64_t s_q32)
+{
+    return s_q32 > ONE_Q32 ? ONE_Q32 : s_q32 < -ONE_Q32 ? -ONE_Q32 : s_q32;
 }

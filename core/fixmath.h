@@ -10,10 +10,10 @@
 #define VFI_ONE_Q30 (INT32_C(1) << 30)
 
 /* sin and cos of an angle in binary angle units (65536 per turn), Q2.30; exact at multiples of 1/256 turn
- * (table values), otherwise within 2e-9. */
+ * (table values), otherwise within 3e-9 (measured 2.3e-9 over all 65536 angles). */
 void vfi_sincos(int32_t angle_bau, int32_t *sin_q30, int32_t *cos_q30);
 
-/* exp(-x) for x >= 0 in Q.28; result Q.30, within 3e-9 absolute. */
+/* exp(-x) for x >= 0 in Q.28; result Q.30, within 4e-9 absolute (measured 3.6e-9). */
 uint32_t vfi_exp_neg_q28(uint64_t x_q28);
 
 /* -ln(y) for y in Q.32, 2^-16 <= y <= 1 (smaller y is taken as 2^-16); result Q.28, within 1e-8. */

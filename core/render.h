@@ -18,14 +18,13 @@
 /* A pixel stops taking segments once its opacity reaches 1 - 2^-10 (docs/algorithm.md, section 4). */
 #define VFI_OPAQUE_Q15 (VFI_ONE_Q15 - (VFI_ONE_Q15 >> 10))
 
-/* A buffer-slice entry: a sample's table entry and the standard slice it belongs to, so that a sample left over
- * from an earlier slice is never mistaken for the current one (no clearing between slices is needed). */
-typedef struct vfi_sample {
-    uint16_t entry;
-    uint16_t slice;
-} vfi_sample_t;
+/* A buffered sample, one 64-bit word: the standard slice it belongs to (high half), so that a sample left over
+ * from an earlier slice is never mistaken for the current one and no clearing between slices is needed, and
+ * its table position (low half): for nearest lookups the entry times N (the row offset of a front entry in the
+ * 2D table), for bilinear lookups the Q.16 position. */
+typedef uint64_t vfi_sample_t;
 
-#define VFI_NO_SLICE 0xFFFFu
+#define VFI_NO_SLICE UINT64_C(0xFFFFFFFF00000000)
 
 struct vf_renderer {
     vf_params_t params;
@@ -46,10 +45,14 @@ struct vf_renderer {
     bool have_runs;
 
     vfi_table_scratch_t table_scratch;
-    uint16_t *point_table;  /* [N * 4] r, g, b, a in Q1.15 */
-    uint16_t *preint_table; /* [N * N * 4], preint1 only */
+    void *table;            /* point table [N * 4] (point, preclass) or 2D table [N * N * 4] (preint1): r, g, b,
+                             * a in Q1.15 (16 bits) or 8 bits */
     bool tables_valid;
     uint32_t tables_generation, tables_slab_q16;
+    uint16_t *lut_f;        /* lut correction knots, VFI_LUT_KNOTS each, when correction is lut */
+    uint32_t *lut_g;
+    uint32_t lut_slab_q16;  /* the slab length the lut was made for, 0 for none yet */
+    vfi_lookup_ctx_t lookup;
 
     vf_factor_t factor;
     bool have_frame;

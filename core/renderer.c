@@ -8,6 +8,8 @@
 static vf_status_t check_params(const vf_params_t *p);
 static vf_status_t check_volume(const vf_volume_t *v);
 static size_t intermediate_pixels(const uint32_t dims[3], uint32_t *max_w, uint32_t *max_ni);
+static size_t table_entries(const vf_params_t *p);
+static size_t table_bytes(const vf_params_t *p);
 static vf_status_t encode_runs(vf_renderer_t *r);
 static void update_tables(vf_renderer_t *r);
 
@@ -17,6 +19,10 @@ void vf_params_default(vf_params_t *p)
         return;
     p->mode = VF_MODE_PREINT1;
     p->table_size = VF_DEFAULT_TABLE;
+    p->table_bits = 16;
+    p->lookup = VF_LOOKUP_NEAREST;
+    p->correction = VF_CORRECTION_REBUILD;
+    p->buffer = VF_BUFFER_SLICE;
     p->background[0] = p->background[1] = p->background[2] = 0;
 }
 
@@ -33,10 +39,7 @@ vf_status_t vf_renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, size
     size_t total = VFI_ALIGN + vfi_arena_block(sizeof(vf_renderer_t));
     for (int a = 0; a < 3; a++)
         total += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
-    total += vfi_classify_bytes(n) + vfi_table_scratch_bytes(n);
-    total += vfi_arena_block(sizeof(uint16_t) * 4 * n);
-    if (p->mode == VF_MODE_PREINT1)
-        total += vfi_arena_block(sizeof(uint16_t) * 4 * (size_t)n * n);
+    total += vfi_classify_bytes(n) + table_bytes(p);
     uint32_t w, ni;
     total += vfi_arena_block(sizeof(uint16_t) * 4 * intermediate_pixels(vol->dims, &w, &ni));
     *bytes = total;
@@ -67,16 +70,19 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
         r->slices[a] = vfi_arena_alloc(arena, vfi_slices_bytes(vol->dims, a));
     }
     const uint32_t n = p->table_size;
-    s = vfi_classify_alloc(&r->cls, n, arena);
+    const bool lut = p->correction == VF_CORRECTION_LUT;
+    s = vfi_classify_alloc(&r->cls, n, p->lookup, arena);
     if (s == VF_OK)
         s = vfi_table_scratch_alloc(&r->table_scratch, n, arena);
-    r->point_table = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * n);
-    if (p->mode == VF_MODE_PREINT1)
-        r->preint_table = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * (size_t)n * n);
+    r->table = vfi_arena_alloc(arena, table_entries(p) * 4 * (p->table_bits / 8));
+    if (lut) {
+        r->lut_f = vfi_arena_alloc(arena, sizeof(uint16_t) * VFI_LUT_KNOTS);
+        r->lut_g = vfi_arena_alloc(arena, sizeof(uint32_t) * VFI_LUT_KNOTS);
+    }
     r->intermediate_max = intermediate_pixels(vol->dims, &r->max_int_w, &r->max_ni);
     r->intermediate = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * r->intermediate_max);
-    if (s != VF_OK || !r->slices[0] || !r->slices[1] || !r->slices[2] || !r->point_table ||
-        (p->mode == VF_MODE_PREINT1 && !r->preint_table) || !r->intermediate)
+    if (s != VF_OK || !r->slices[0] || !r->slices[1] || !r->slices[2] || !r->table ||
+        (lut && (!r->lut_f || !r->lut_g)) || !r->intermediate)
         return VF_ERR_NOMEM; /* the caller's arena is theirs to reset; *out stays NULL */
     r->runs_mark = arena->used;
 
@@ -84,8 +90,7 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     for (int a = 0; a < 3; a++)
         r->memory.slices += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
     r->memory.classify = vfi_classify_bytes(n);
-    r->memory.tables = vfi_table_scratch_bytes(n) + vfi_arena_block(sizeof(uint16_t) * 4 * n) +
-                       (p->mode == VF_MODE_PREINT1 ? vfi_arena_block(sizeof(uint16_t) * 4 * (size_t)n * n) : 0);
+    r->memory.tables = table_bytes(p);
     r->memory.intermediate = vfi_arena_block(sizeof(uint16_t) * 4 * r->intermediate_max);
     *out = r;
     return VF_OK;
@@ -97,6 +102,7 @@ vf_status_t vf_renderer_set_window(vf_renderer_t *r, vf_window_t window)
         return VF_ERR_NULL;
     if (window.lo == window.hi)
         return VF_ERR_WINDOW;
+    r->have_frame = false; /* a frame begun before must not composite half old, half new data */
     vfi_slices_build(&r->volume, window, r->slices);
     r->have_window = true;
     return r->have_tf ? encode_runs(r) : VF_OK;
@@ -109,6 +115,7 @@ vf_status_t vf_renderer_set_tf(vf_renderer_t *r, const vf_tf_t *tf)
     vf_status_t s = vfi_classify(&r->cls, tf);
     if (s != VF_OK)
         return s; /* checked before anything was written: the previous transfer function stands */
+    r->have_frame = false; /* the frame begun before has tables for the old function: begin again */
     r->have_tf = true;
     r->tf_generation++;
     return r->have_window ? encode_runs(r) : VF_OK;
@@ -196,17 +203,19 @@ const uint16_t *vf_render_intermediate(const vf_renderer_t *r)
 
 const uint16_t *vf_render_point_table(const vf_renderer_t *r)
 {
-    return r && r->tables_valid && r->params.mode == VF_MODE_POINT ? r->point_table : NULL;
+    return r && r->tables_valid && r->params.table_bits == 16 && r->params.mode != VF_MODE_PREINT1 ? r->table : NULL;
 }
 
 const uint16_t *vf_render_preint_table(const vf_renderer_t *r)
 {
-    return r && r->tables_valid ? r->preint_table : NULL;
+    return r && r->tables_valid && r->params.table_bits == 16 && r->params.mode == VF_MODE_PREINT1 ? r->table : NULL;
 }
 
 static vf_status_t check_params(const vf_params_t *p)
 {
-    if ((unsigned)p->mode >= VF_MODE_COUNT)
+    if ((unsigned)p->mode >= VF_MODE_COUNT || (unsigned)p->lookup >= VF_LOOKUP_COUNT ||
+        (unsigned)p->correction >= VF_CORRECTION_COUNT || (unsigned)p->buffer >= VF_BUFFER_COUNT ||
+        (p->table_bits != 8 && p->table_bits != 16))
         return VF_ERR_ARG;
     if (p->table_size < VF_MIN_TABLE || p->table_size > VF_MAX_TABLE)
         return VF_ERR_ARG;
@@ -235,6 +244,20 @@ static vf_status_t check_volume(const vf_volume_t *v)
     if (voxels > SIZE_MAX / 4)
         return VF_ERR_DIMS;
     return VF_OK;
+}
+
+/* The point table (point, preclass) or the 2D table (preint1), the builders' scratch, the lut. */
+static size_t table_entries(const vf_params_t *p)
+{
+    return p->mode == VF_MODE_PREINT1 ? (size_t)p->table_size * p->table_size : p->table_size;
+}
+
+static size_t table_bytes(const vf_params_t *p)
+{
+    size_t bytes = vfi_table_scratch_bytes(p->table_size) + vfi_arena_block(table_entries(p) * 4 * (p->table_bits / 8));
+    if (p->correction == VF_CORRECTION_LUT)
+        bytes += vfi_arena_block(sizeof(uint16_t) * VFI_LUT_KNOTS) + vfi_arena_block(sizeof(uint32_t) * VFI_LUT_KNOTS);
+    return bytes;
 }
 
 /* The intermediate image is at most (n_i + n_k - 1) x (n_j + n_k - 1) for any view, as |shear| <= 1. */
@@ -281,17 +304,33 @@ static vf_status_t encode_runs(vf_renderer_t *r)
     return VF_OK;
 }
 
-/* The tables depend on the transfer function and on the slab length, which changes with the view. */
+/* The tables depend on the transfer function and on the slab length, which changes with the view; with the
+ * lut correction they are built for length 1 once per transfer function and the lut follows the view. */
 static void update_tables(vf_renderer_t *r)
 {
-    uint32_t slab = r->factor.slab_q16;
-    if (r->tables_valid && r->tables_generation == r->tf_generation && r->tables_slab_q16 == slab)
-        return;
-    if (r->params.mode == VF_MODE_POINT)
-        vfi_point_table(&r->cls, slab, r->point_table);
-    else
-        vfi_preint_table_bruteforce(&r->cls, slab, &r->table_scratch, r->preint_table);
-    r->tables_valid = true;
-    r->tables_generation = r->tf_generation;
-    r->tables_slab_q16 = slab;
+    const uint32_t slab = r->factor.slab_q16;
+    const bool lut = r->params.correction == VF_CORRECTION_LUT;
+    const uint32_t table_slab = lut ? UINT32_C(65536) : slab;
+    const bool bits16 = r->params.table_bits == 16;
+    if (!r->tables_valid || r->tables_generation != r->tf_generation || r->tables_slab_q16 != table_slab) {
+        vfi_table_out_t out;
+        out.q15 = bits16 ? r->table : NULL;
+        out.u8 = bits16 ? NULL : r->table;
+        if (r->params.mode == VF_MODE_PREINT1)
+            vfi_preint_table_incremental(&r->cls, table_slab, &r->table_scratch, out);
+        else
+            vfi_point_table(&r->cls, table_slab, out);
+        r->tables_valid = true;
+        r->tables_generation = r->tf_generation;
+        r->tables_slab_q16 = table_slab;
+    }
+    if (lut && r->lut_slab_q16 != slab) {
+        vfi_correction_lut(slab, r->lut_f, r->lut_g); /* rho = d / 1 */
+        r->lut_slab_q16 = slab;
+    }
+    r->lookup.q15 = bits16 ? r->table : NULL;
+    r->lookup.u8 = bits16 ? NULL : r->table;
+    r->lookup.n = r->params.table_size;
+    r->lookup.lut_f = lut ? r->lut_f : NULL;
+    r->lookup.lut_g = lut ? r->lut_g : NULL;
 }

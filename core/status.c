@@ -27,8 +27,24 @@ const char *vf_mode_name(vf_mode_t mode)
     switch (mode) {
     case VF_MODE_POINT: return "point";
     case VF_MODE_PREINT1: return "preint1";
+    case VF_MODE_PRECLASS: return "preclass";
     default: return "unknown";
     }
+}
+
+const char *vf_lookup_name(vf_lookup_t lookup)
+{
+    return lookup == VF_LOOKUP_NEAREST ? "nearest" : lookup == VF_LOOKUP_BILINEAR ? "bilinear" : "unknown";
+}
+
+const char *vf_correction_name(vf_correction_t correction)
+{
+    return correction == VF_CORRECTION_REBUILD ? "rebuild" : correction == VF_CORRECTION_LUT ? "lut" : "unknown";
+}
+
+const char *vf_buffer_name(vf_buffer_t buffer)
+{
+    return buffer == VF_BUFFER_SLICE ? "slice" : buffer == VF_BUFFER_IMAGE ? "image" : "unknown";
 }
 
 uint32_t vf_format_bytes(vf_format_t format)

@@ -1,7 +1,7 @@
 /*
  * tables.h: the lookup tables compositing reads, built from a classification for one slab length
- * (docs/algorithm.md, section 2). An entry is four Q1.15 values (1.0 = 32768): premultiplied r, g, b and
- * opacity a. The 2D table is indexed [front * N + back].
+ * (docs/algorithm.md, section 2). An entry is four values, premultiplied r, g, b and opacity a, either Q1.15
+ * (1.0 = 32768) or 8 bits (1.0 = 255). The 2D table is indexed [front * N + back].
  */
 #ifndef VF_TABLES_H
 #define VF_TABLES_H
@@ -10,20 +10,55 @@
 
 #define VFI_ONE_Q15 32768u
 
-/* Scratch the builders need besides their output: interval opacity and colour for one piece length. */
+/* Where a builder writes: exactly one of the two is set. */
+typedef struct vfi_table_out {
+    uint16_t *q15;
+    uint8_t *u8;
+} vfi_table_out_t;
+
+/* What compositing reads: one table (point or 2D) in one of the two formats, and the lut correction. */
+typedef struct vfi_lookup_ctx {
+    const uint16_t *q15;   /* the table with 16-bit entries, or NULL */
+    const uint8_t *u8;     /* the table with 8-bit entries, or NULL */
+    uint32_t n;            /* entries per table axis */
+    const uint16_t *lut_f; /* lut correction: F(a) at a = k / 1024, Q1.15, or NULL for none */
+    const uint32_t *lut_g; /* G(a) = F(a) / a at the same knots, Q16.16 */
+} vfi_lookup_ctx_t;
+
+#define VFI_LUT_KNOTS 1025
+
+/* The lut correction for slab length rho = d / d0 (Q16.16): F(a) = 1 - (1 - a)^rho and G(a) = F(a) / a at
+ * a = k / 1024, k = 0..1024 (docs/algorithm.md, section 4b). */
+void vfi_correction_lut(uint32_t rho_q16, uint16_t *f_q15, uint32_t *g_q16);
+
+/* A segment's opacity and premultiplied colour while tables are built, Q.30. */
+typedef struct vfi_seg {
+    uint32_t r, g, b, a;
+} vfi_seg_t;
+
+/* Scratch the builders need besides their output, for n entries: interval values for one piece length, and the
+ * incremental builder's block composites, front to back (prefix, suffix) and back to front (back_prefix,
+ * back_suffix), and how many visible intervals lie below each interval. */
 typedef struct vfi_table_scratch {
-    uint32_t *interval_q30; /* [(n - 1) * 4]: alpha, r, g, b of interval m */
+    vfi_seg_t *interval, *prefix, *suffix, *back_prefix, *back_suffix; /* [n - 1] each */
+    uint16_t *visible_below;                                           /* [n] */
 } vfi_table_scratch_t;
 
 size_t vfi_table_scratch_bytes(uint32_t n);
 vf_status_t vfi_table_scratch_alloc(vfi_table_scratch_t *scratch, uint32_t n, vf_arena_t *arena);
 
-/* Order 0: entry i = (c_i a_i, a_i), a_i = 1 - exp(-tau_i d). out has n * 4 values. */
-void vfi_point_table(const vfi_classify_t *cls, uint32_t slab_q16, uint16_t *out);
+/* Order 0: entry i = (c_i a_i, a_i), a_i = 1 - exp(-tau_i d). n entries. */
+void vfi_point_table(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out_t out);
 
-/* Order 1 by brute force, O(N^3): every off-diagonal entry composites its |b - f| intervals one by one. The
- * oracle for faster builders. out has n * n * 4 values. */
-void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_scratch_t *scratch,
-                                 uint16_t *out);
+/* Order 1, n x n entries. Both give the table of docs/algorithm.md section 2; they differ in how they group the
+ * compositing of intervals, so in rounding (at most 1 LSB of Q1.15 apart).
+ * Brute force, O(N^3): every entry composites its |b - f| intervals one after another. The oracle.
+ * Incremental subrange integration (Lum, Wilson and Ma 2004), O(N^2): along a diagonal |b - f| = r every
+ * interval has length d / r; in blocks of r intervals, suffix and prefix composites are kept, and each entry
+ * joins one suffix with one prefix. */
+void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
+                                 vfi_table_out_t out);
+void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
+                                  vfi_table_out_t out);
 
 #endif

@@ -96,19 +96,45 @@ typedef struct vf_tf {
 /* Parameters, fixed for the life of a renderer */
 
 typedef enum vf_mode {
-    VF_MODE_POINT,   /* order 0: point-sampled post-classification, one table entry per slice sample */
-    VF_MODE_PREINT1, /* order 1: pre-integrated slabs, one 2D table entry per (front, back) sample pair */
+    VF_MODE_POINT,    /* order 0: point-sampled post-classification, one table entry per slice sample */
+    VF_MODE_PREINT1,  /* order 1: pre-integrated slabs, one 2D table entry per (front, back) sample pair */
+    VF_MODE_PRECLASS, /* order 0, pre-classified: voxels classified first, their RGBA interpolated (VolPack) */
     VF_MODE_COUNT
 } vf_mode_t;
 
+typedef enum vf_lookup {
+    VF_LOOKUP_NEAREST,  /* the nearest table entry of each sample */
+    VF_LOOKUP_BILINEAR, /* interpolate between entries (1D for point, 2D for preint1) */
+    VF_LOOKUP_COUNT
+} vf_lookup_t;
+
+typedef enum vf_correction {
+    VF_CORRECTION_REBUILD, /* tables rebuilt for each view's exact slab length */
+    VF_CORRECTION_LUT,     /* tables built once for length 1, each segment corrected through a lookup on a */
+    VF_CORRECTION_COUNT
+} vf_correction_t;
+
+typedef enum vf_buffer {
+    VF_BUFFER_SLICE, /* two buffer slices the size of a voxel slice row (Schulze et al.'s slice-sized) */
+    VF_BUFFER_IMAGE, /* one buffer the size of an intermediate row, updated in place (image-sized) */
+    VF_BUFFER_COUNT
+} vf_buffer_t;
+
 typedef struct vf_params {
-    vf_mode_t mode;
-    uint32_t table_size;     /* N table entries over the scalar domain, VF_MIN_TABLE..VF_MAX_TABLE (256) */
-    uint16_t background[3];  /* unorm16 RGB behind the volume (black) */
+    vf_mode_t mode;             /* preint1 */
+    uint32_t table_size;        /* N table entries over the scalar domain, VF_MIN_TABLE..VF_MAX_TABLE (256) */
+    uint32_t table_bits;        /* 16 (Q1.15 entries) or 8 (8-bit RGBA entries, half the memory) */
+    vf_lookup_t lookup;         /* nearest */
+    vf_correction_t correction; /* rebuild */
+    vf_buffer_t buffer;         /* slice */
+    uint16_t background[3];     /* unorm16 RGB behind the volume (black) */
 } vf_params_t;
 
 void vf_params_default(vf_params_t *params);
 const char *vf_mode_name(vf_mode_t mode);
+const char *vf_lookup_name(vf_lookup_t lookup);
+const char *vf_correction_name(vf_correction_t correction);
+const char *vf_buffer_name(vf_buffer_t buffer);
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* View and output image */
@@ -211,10 +237,26 @@ vf_status_t vf_warp_band(const vf_renderer_t *renderer, const vf_image_t *image,
 vf_status_t vf_render(vf_renderer_t *renderer, const vf_view_t *view, const vf_image_t *image, void *scratch,
                       size_t scratch_bytes);
 
+/* ---------------------------------------------------------------------------------------------------------- */
+/* Tables on their own, for tools and tests. An entry is Q1.15 r, g, b, a (colour premultiplied); the 2D table is
+ * indexed [front * n + back]. scratch provides the classification and the builders' working memory
+ * (vf_table_scratch_bytes); it is rewound afterwards. */
+
+typedef enum vf_builder {
+    VF_BUILDER_INCREMENTAL, /* O(N^2) incremental subrange integration (Lum et al. 2004): what renderers use */
+    VF_BUILDER_BRUTEFORCE,  /* O(N^3), every entry composited interval by interval: the oracle */
+    VF_BUILDER_COUNT
+} vf_builder_t;
+
+size_t vf_table_scratch_bytes(uint32_t n);
+vf_status_t vf_point_table(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_arena_t *scratch, uint16_t *out);
+vf_status_t vf_preint_table(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_builder_t builder,
+                            vf_arena_t *scratch, uint16_t *out);
+
 /* Read-only access for tests and tools: the current intermediate image (Q1.15 RGBA, int_w * int_h pixels) and
  * tables (Q1.15 r, g, b, a per entry, colour premultiplied; the 2D table is indexed [front * N + back]). NULL before they exist. */
 const uint16_t *vf_render_intermediate(const vf_renderer_t *renderer);
-const uint16_t *vf_render_point_table(const vf_renderer_t *renderer);
+const uint16_t *vf_render_point_table(const vf_renderer_t *renderer);  /* 16-bit tables only */
 const uint16_t *vf_render_preint_table(const vf_renderer_t *renderer);
 
 #ifdef __cplusplus

@@ -3,14 +3,26 @@
  * (docs/algorithm.md, section 5).
  *
  * Each final pixel's intermediate point is u0 + x du/dx + y du/dy in Q32.32, exact (no accumulated rounding);
- * the bilinear weights are Q0.16, the colour Q1.15 until it is packed into the output format.
+ * the bilinear weights are Q0.16, the colour Q1.15 until it is packed into the output format. Per row, the
+ * pixels whose footprint misses the intermediate image get the background without being sampled, and those
+ * whose four neighbours are all inside it take a path without bounds checks.
  */
+#include "fixmath.h"
 #include "render.h"
 
 #define ONE_Q32 (INT64_C(1) << 32)
 
-static void sample_intermediate(const vf_renderer_t *r, int64_t u_q32, int64_t v_q32, uint32_t rgba[4]);
-static void store_pixel(unsigned char *dst, vf_format_t format, const uint32_t rgb[3]);
+typedef struct warp_row {
+    const vf_renderer_t *r;
+    uint32_t bg[3];         /* background, Q1.15 */
+    bool have_bg;
+    vf_format_t format;
+    uint32_t bpp;
+} warp_row_t;
+
+static void span(int64_t start, int64_t step, int64_t lo, int64_t hi, int64_t width, int64_t *x0, int64_t *x1);
+static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, unsigned char *dst);
+static void store_pixel(const warp_row_t *w, unsigned char *dst, uint32_t px[4]);
 
 vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint32_t y0, uint32_t y1)
 {
@@ -25,62 +37,138 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
         return VF_ERR_ARG;
 
     /* The background shows through what the volume leaves: out = C + (1 - A) bg. */
-    uint32_t bg[3];
-    bool have_bg = false;
+    warp_row_t w;
+    w.r = r;
+    w.format = image->format;
+    w.bpp = bpp;
+    w.have_bg = false;
     for (int c = 0; c < 3; c++) {
-        bg[c] = ((uint32_t)r->params.background[c] * VFI_ONE_Q15 + 65535u / 2) / 65535u;
-        have_bg |= bg[c] != 0;
+        w.bg[c] = ((uint32_t)r->params.background[c] * VFI_ONE_Q15 + 65535u / 2) / 65535u;
+        w.have_bg |= w.bg[c] != 0;
     }
+    uint32_t empty[4] = {0, 0, 0, 0};
+    unsigned char background[4];
+    store_pixel(&w, background, empty);
 
+    const int64_t iw = f->int_w, ih = f->int_h;
+    const uint16_t *img = r->intermediate;
     for (uint32_t y = y0; y < y1; y++) {
-        unsigned char *dst = (unsigned char *)image->pixels + (size_t)y * image->stride;
-        int64_t u = f->u0_q32 + (int64_t)y * f->du_dy_q32;
-        int64_t v = f->v0_q32 + (int64_t)y * f->dv_dy_q32;
-        for (uint32_t x = 0; x < image->width; x++, dst += bpp, u += f->du_dx_q32, v += f->dv_dx_q32) {
+        unsigned char *row = (unsigned char *)image->pixels + (size_t)y * image->stride;
+        const int64_t u_row = f->u0_q32 + (int64_t)y * f->du_dy_q32, v_row = f->v0_q32 + (int64_t)y * f->dv_dy_q32;
+        /* Pixels [touch0, touch1) see some of the image (u in (-1, w), v in (-1, h)); within them,
+         * [inner0, inner1) have all four neighbours inside (u in [0, w - 1), v in [0, h - 1)). */
+        int64_t a0, a1, b0, b1, touch0, touch1, inner0, inner1;
+        span(u_row, f->du_dx_q32, -ONE_Q32, iw * ONE_Q32, image->width, &a0, &a1);
+        span(v_row, f->dv_dx_q32, -ONE_Q32, ih * ONE_Q32, image->width, &b0, &b1);
+        touch0 = a0 > b0 ? a0 : b0;
+        touch1 = a1 < b1 ? a1 : b1;
+        span(u_row, f->du_dx_q32, 0, (iw - 1) * ONE_Q32, image->width, &a0, &a1);
+        span(v_row, f->dv_dx_q32, 0, (ih - 1) * ONE_Q32, image->width, &b0, &b1);
+        inner0 = a0 > b0 ? a0 : b0;
+        inner1 = a1 < b1 ? a1 : b1;
+        if (touch1 < touch0)
+            touch0 = touch1 = 0;
+        if (inner1 <= inner0)
+            inner0 = inner1 = touch0;
+
+        for (int64_t x = 0; x < touch0; x++)
+            for (uint32_t k = 0; k < bpp; k++)
+                row[x * bpp + k] = background[k];
+        for (int64_t x = touch0; x < inner0; x++)
+            pixel_general(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
+        int64_t u = u_row + inner0 * f->du_dx_q32, v = v_row + inner0 * f->dv_dx_q32;
+        for (int64_t x = inner0; x < inner1; x++, u += f->du_dx_q32, v += f->dv_dx_q32) {
+            /* all four neighbours inside: u, v >= 0, so the shifts are floors */
+            uint32_t fx = (uint32_t)(u >> 16) & 0xFFFFu, fy = (uint32_t)(v >> 16) & 0xFFFFu;
+            uint32_t w11 = (fx * fy + 0x8000u) >> 16;
+            uint32_t w00 = 65536u - fx - fy + w11, w10 = fx - w11, w01 = fy - w11;
+            const uint16_t *p00 = img + ((size_t)(v >> 32) * (size_t)iw + (size_t)(u >> 32)) * 4;
+            const uint16_t *p01 = p00 + iw * 4;
             uint32_t px[4];
-            sample_intermediate(r, u, v, px);
-            if (have_bg)
-                for (int c = 0; c < 3; c++)
-                    px[c] += ((VFI_ONE_Q15 - (px[3] > VFI_ONE_Q15 ? VFI_ONE_Q15 : px[3])) * bg[c] + 0x4000u) >> 15;
-            store_pixel(dst, image->format, px);
+            for (int c = 0; c < 4; c++)
+                px[c] = (p00[c] * w00 + p00[4 + c] * w10 + p01[c] * w01 + p01[4 + c] * w11 + 0x8000u) >> 16;
+            store_pixel(&w, row + x * bpp, px);
         }
+        for (int64_t x = inner1 > touch0 ? inner1 : touch0; x < touch1; x++)
+            pixel_general(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
+        for (int64_t x = touch1; x < image->width; x++)
+            for (uint32_t k = 0; k < bpp; k++)
+                row[x * bpp + k] = background[k];
     }
     return VF_OK;
 }
 
-/* Bilinear, with pixels outside the intermediate image transparent; Q1.15 r, g, b, a. */
-static void sample_intermediate(const vf_renderer_t *r, int64_t u_q32, int64_t v_q32, uint32_t out[4])
+/* The smallest x in [0, width] with start + x step > c (or >= c when or_equal), for step > 0: an estimate by
+ * division, made exact by testing the inequality itself, so rounding can never admit a pixel outside. */
+static int64_t first_past(int64_t start, int64_t step, int64_t c, bool or_equal, int64_t width)
 {
-    const int64_t w = r->factor.int_w, h = r->factor.int_h;
-    out[0] = out[1] = out[2] = out[3] = 0;
-    /* Shifted by one pixel, the support (-1, w) x (-1, h) is positive, and shifts act as floor. */
-    int64_t us = u_q32 + ONE_Q32, vs = v_q32 + ONE_Q32;
-    if (us <= 0 || vs <= 0 || us >= (w + 1) * ONE_Q32 || vs >= (h + 1) * ONE_Q32)
-        return;
-    int32_t iu = (int32_t)(us >> 32) - 1, iv = (int32_t)(vs >> 32) - 1;
-    uint32_t fx = (uint32_t)(us >> 16) & 0xFFFFu, fy = (uint32_t)(vs >> 16) & 0xFFFFu;
-    uint32_t w11 = (fx * fy + 0x8000u) >> 16;
-    const uint32_t weight[4] = {65536u - fx - fy + w11, fx - w11, fy - w11, w11};
-    const int32_t du[4] = {0, 1, 0, 1}, dv[4] = {0, 0, 1, 1};
-    uint32_t acc[4] = {0x8000u, 0x8000u, 0x8000u, 0x8000u};
-    for (int n = 0; n < 4; n++) {
-        int32_t pu = iu + du[n], pv = iv + dv[n];
-        if (weight[n] == 0 || pu < 0 || pv < 0 || pu >= w || pv >= h)
-            continue;
-        const uint16_t *p = r->intermediate + ((size_t)pv * (size_t)w + (size_t)pu) * 4;
-        for (int c = 0; c < 4; c++)
-            acc[c] += p[c] * weight[n]; /* at most 32768 * 65536 in all */
+    int64_t x = 0;
+    if (c > start) {
+        uint64_t q = vfi_udiv64((uint64_t)(c - start), (uint64_t)step);
+        x = q > (uint64_t)width ? width : (int64_t)q;
     }
-    for (int c = 0; c < 4; c++)
-        out[c] = acc[c] >> 16;
+    while (x > 0 && (or_equal ? start + (x - 1) * step >= c : start + (x - 1) * step > c))
+        x--;
+    while (x < width && !(or_equal ? start + x * step >= c : start + x * step > c))
+        x++;
+    return x;
 }
 
-static void store_pixel(unsigned char *dst, vf_format_t format, const uint32_t rgb[3])
+/* The pixels x in [0, width) with lo < start + x step < hi, as [x0, x1) (x1 <= x0 when there are none). */
+static void span(int64_t start, int64_t step, int64_t lo, int64_t hi, int64_t width, int64_t *x0, int64_t *x1)
+{
+    if (step == 0) {
+        *x0 = 0;
+        *x1 = start > lo && start < hi ? width : 0;
+    } else if (step > 0) {
+        *x0 = first_past(start, step, lo, false, width);
+        *x1 = first_past(start, step, hi, true, width);
+    } else { /* mirrored: start + x step < hi  <=>  -start + x (-step) > -hi */
+        *x0 = first_past(-start, -step, -hi, false, width);
+        *x1 = first_past(-start, -step, -lo, true, width);
+    }
+}
+
+/* Bilinear, with pixels outside the intermediate image transparent. */
+static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, unsigned char *dst)
+{
+    const vf_renderer_t *r = w->r;
+    const int64_t iw = r->factor.int_w, ih = r->factor.int_h;
+    uint32_t out[4] = {0, 0, 0, 0};
+    /* Shifted by one pixel, the support (-1, w) x (-1, h) is positive, and shifts act as floor. */
+    int64_t us = u_q32 + ONE_Q32, vs = v_q32 + ONE_Q32;
+    if (us > 0 && vs > 0 && us < (iw + 1) * ONE_Q32 && vs < (ih + 1) * ONE_Q32) {
+        int32_t iu = (int32_t)(us >> 32) - 1, iv = (int32_t)(vs >> 32) - 1;
+        uint32_t fx = (uint32_t)(us >> 16) & 0xFFFFu, fy = (uint32_t)(vs >> 16) & 0xFFFFu;
+        uint32_t w11 = (fx * fy + 0x8000u) >> 16;
+        const uint32_t weight[4] = {65536u - fx - fy + w11, fx - w11, fy - w11, w11};
+        const int32_t du[4] = {0, 1, 0, 1}, dv[4] = {0, 0, 1, 1};
+        uint32_t acc[4] = {0x8000u, 0x8000u, 0x8000u, 0x8000u};
+        for (int n = 0; n < 4; n++) {
+            int32_t pu = iu + du[n], pv = iv + dv[n];
+            if (weight[n] == 0 || pu < 0 || pv < 0 || pu >= iw || pv >= ih)
+                continue;
+            const uint16_t *p = r->intermediate + ((size_t)pv * (size_t)iw + (size_t)pu) * 4;
+            for (int c = 0; c < 4; c++)
+                acc[c] += p[c] * weight[n]; /* at most 32768 * 65536 in all */
+        }
+        for (int c = 0; c < 4; c++)
+            out[c] = acc[c] >> 16;
+    }
+    store_pixel(w, dst, out);
+}
+
+/* C + (1 - A) background, packed. */
+static void store_pixel(const warp_row_t *w, unsigned char *dst, uint32_t px[4])
 {
     uint32_t c[3];
-    for (int n = 0; n < 3; n++)
-        c[n] = rgb[n] > VFI_ONE_Q15 ? VFI_ONE_Q15 : rgb[n];
-    switch (format) {
+    for (int n = 0; n < 3; n++) {
+        c[n] = px[n];
+        if (w->have_bg)
+            c[n] += ((VFI_ONE_Q15 - (px[3] > VFI_ONE_Q15 ? VFI_ONE_Q15 : px[3])) * w->bg[n] + 0x4000u) >> 15;
+        c[n] = c[n] > VFI_ONE_Q15 ? VFI_ONE_Q15 : c[n];
+    }
+    switch (w->format) {
     case VF_FORMAT_RGB888:
         for (int n = 0; n < 3; n++)
             dst[n] = (unsigned char)((c[n] * 255u + 0x4000u) >> 15);

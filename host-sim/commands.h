@@ -6,5 +6,6 @@
 int sim_cmd_render(int argc, char **argv);
 int sim_cmd_compare(int argc, char **argv);
 int sim_cmd_bench(int argc, char **argv);
+int sim_cmd_tables(int argc, char **argv);
 
 #endif

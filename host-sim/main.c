@@ -11,7 +11,8 @@ static const char usage[] =
     "usage: volfix-sim COMMAND [options]   (volfix-sim COMMAND --help for its options)\n"
     "  render    render one image with the fixed-point core (or the double reference) to PNG\n"
     "  compare   render with the core and the double reference and report the difference\n"
-    "  bench     time 90 frames of a 180-degree turn (Schulze et al.'s protocol)\n";
+    "  bench     time 90 frames of a 180-degree turn (Schulze et al.'s protocol)\n"
+    "  tables    build a pre-integrated table with each builder: time, error, picture\n";
 
 int main(int argc, char **argv)
 {
@@ -26,6 +27,8 @@ int main(int argc, char **argv)
         return sim_cmd_compare(argc - 2, argv + 2);
     if (strcmp(cmd, "bench") == 0)
         return sim_cmd_bench(argc - 2, argv + 2);
-    fprintf(stderr, "volfix-sim: unknown command '%s' (expected render, compare or bench; see --help)\n", cmd);
+    if (strcmp(cmd, "tables") == 0)
+        return sim_cmd_tables(argc - 2, argv + 2);
+    fprintf(stderr, "volfix-sim: unknown command '%s' (expected render, compare, bench or tables; see --help)\n", cmd);
     return 2;
 }

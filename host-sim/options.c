@@ -8,7 +8,8 @@
 const char sim_scene_help[] =
     "  --preset NAME        built-in transfer function: ramp (default), sharp, ct-bone, ct-skin-bone, mr-brain\n"
     "  --tf FILE            transfer function file (see README: 'scalar r g b a' per line)\n"
-    "  --mode MODE          point (order 0) or preint1 (order 1, pre-integrated; default)\n"
+    "  --mode MODE          point (order 0), preint1 (order 1, pre-integrated; default) or preclass\n"
+    "                       (order 0 with voxels classified before interpolation, as VolPack)\n"
     "  --view AZ,EL[,ROLL]  view angles in degrees (default 30,20)\n"
     "  --zoom Z             1 fits the volume's bounding sphere in the image (default 1)\n"
     "  --size WxH           output size in pixels (default 512x512)\n"
@@ -16,6 +17,11 @@ const char sim_scene_help[] =
     "  --window LO,HI       data values mapped to the transfer function's 0..1 (default: 0.5 and 99.5\n"
     "                       percentiles for 16-bit data, the full range for 8-bit)\n"
     "  --table-size N       transfer-function table entries, 2..1024 (default 256)\n"
+    "  --table-bits B       16 (default) or 8 bits per table value (half the memory)\n"
+    "  --lookup L           nearest (default) or bilinear table lookup\n"
+    "  --correction C       rebuild (default: tables for each view's slab length) or lut (tables built once,\n"
+    "                       opacity and colour corrected through a lookup on opacity)\n"
+    "  --buffer B           slice (default: two slice-sized buffers) or image (one image-row buffer)\n"
     "  --threads N          compositing and warping threads (default 1)\n"
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]\n"
     "                       for raw voxel files (--spacing also overrides a file's own)\n"
@@ -47,6 +53,16 @@ static int parse_doubles(const char *text, double *out, int min, int max)
     return n >= min && *p ? n : -1;
 }
 
+int sim_parse_mode(const char *text, vf_mode_t *mode)
+{
+    for (int m = 0; m < VF_MODE_COUNT; m++)
+        if (text && strcmp(text, vf_mode_name((vf_mode_t)m)) == 0) {
+            *mode = (vf_mode_t)m;
+            return 0;
+        }
+    return 2;
+}
+
 int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char *usage)
 {
     memset(o, 0, sizeof *o);
@@ -75,12 +91,36 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--window") == 0 && v) {
             o->window = v;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--mode") == 0) {
-            if (v && strcmp(v, "point") == 0)
-                o->params.mode = VF_MODE_POINT;
-            else if (v && strcmp(v, "preint1") == 0)
-                o->params.mode = VF_MODE_PREINT1;
+            if (sim_parse_mode(v, &o->params.mode))
+                return bad(a, v, "point, preint1 or preclass");
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--table-bits") == 0) {
+            if (v && strcmp(v, "8") == 0)
+                o->params.table_bits = 8;
+            else if (v && strcmp(v, "16") == 0)
+                o->params.table_bits = 16;
             else
-                return bad(a, v, "point or preint1");
+                return bad(a, v, "8 or 16");
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--lookup") == 0) {
+            if (v && strcmp(v, "nearest") == 0)
+                o->params.lookup = VF_LOOKUP_NEAREST;
+            else if (v && strcmp(v, "bilinear") == 0)
+                o->params.lookup = VF_LOOKUP_BILINEAR;
+            else
+                return bad(a, v, "nearest or bilinear");
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--correction") == 0) {
+            if (v && strcmp(v, "rebuild") == 0)
+                o->params.correction = VF_CORRECTION_REBUILD;
+            else if (v && strcmp(v, "lut") == 0)
+                o->params.correction = VF_CORRECTION_LUT;
+            else
+                return bad(a, v, "rebuild or lut");
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--buffer") == 0) {
+            if (v && strcmp(v, "slice") == 0)
+                o->params.buffer = VF_BUFFER_SLICE;
+            else if (v && strcmp(v, "image") == 0)
+                o->params.buffer = VF_BUFFER_IMAGE;
+            else
+                return bad(a, v, "slice or image");
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--view") == 0) {
             double d[3] = {0, 0, 0};
             if (!v || parse_doubles(v, d, 2, 3) < 0)

@@ -38,6 +38,9 @@ enum {
  * a one-line error to stderr. */
 int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char *usage);
 
+/* "point", "preint1" or "preclass". Returns 0, or 2. */
+int sim_parse_mode(const char *text, vf_mode_t *mode);
+
 /* The scene options' help text, for the commands' usage. */
 extern const char sim_scene_help[];
 

@@ -113,11 +113,16 @@ int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, v
     for (uint32_t i = 0; i < s->npoints; i++)
         tf[i] = (ref_tf_point_t){s->points[i].scalar_q8 / 256.0, s->points[i].r / 65535.0,
                                  s->points[i].g / 65535.0, s->points[i].b / 65535.0, s->points[i].a / 65535.0};
-    ref_params_t params = {s->params.mode == VF_MODE_POINT ? REF_MODE_POINT : REF_MODE_PREINT1,
-                           (int)s->params.table_size,
-                           {s->params.background[0] / 65535.0, s->params.background[1] / 65535.0,
-                            s->params.background[2] / 65535.0},
-                           NULL, 0, 0};
+    ref_params_t params = {0};
+    params.mode = s->params.mode == VF_MODE_POINT ? REF_MODE_POINT
+                  : s->params.mode == VF_MODE_PRECLASS ? REF_MODE_PRECLASS
+                                                       : REF_MODE_PREINT1;
+    params.table_size = (int)s->params.table_size;
+    for (int c = 0; c < 3; c++)
+        params.background[c] = s->params.background[c] / 65535.0;
+    params.lookup = s->params.lookup == VF_LOOKUP_BILINEAR ? REF_LOOKUP_BILINEAR : REF_LOOKUP_NEAREST;
+    params.table_bits = (int)s->params.table_bits;
+    params.correction = s->params.correction == VF_CORRECTION_LUT ? REF_CORRECTION_LUT : REF_CORRECTION_REBUILD;
     ref_view_t view = {s->view.azimuth, s->view.elevation, s->view.roll, s->view.zoom_q16 / 65536.0};
     int32_t *offsets = NULL;
     if (core_factor) {
@@ -176,7 +181,14 @@ void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)
         snprintf(view, sizeof view, "%g,%g,%g", az, el, roll);
     else
         snprintf(view, sizeof view, "%g,%g", az, el);
-    snprintf(text, len, "%s %s %ux%u view %s zoom %g %s window %d,%d", base ? base + 1 : s->vol.name,
-             vf_mode_name(s->params.mode), s->width, s->height, view, s->view.zoom_q16 / 65536.0, s->tf.name,
+    const vf_params_t *p = &s->params;
+    char options[128] = "";
+    /* only what differs from the defaults, so that the common line stays short */
+    if (p->table_size != VF_DEFAULT_TABLE || p->table_bits != 16 || p->lookup != VF_LOOKUP_NEAREST ||
+        p->correction != VF_CORRECTION_REBUILD || p->buffer != VF_BUFFER_SLICE)
+        snprintf(options, sizeof options, " (table %u x %u bits, %s, %s, %s buffer)", p->table_size, p->table_bits,
+                 vf_lookup_name(p->lookup), vf_correction_name(p->correction), vf_buffer_name(p->buffer));
+    snprintf(text, len, "%s %s%s %ux%u view %s zoom %g %s window %d,%d", base ? base + 1 : s->vol.name,
+             vf_mode_name(p->mode), options, s->width, s->height, view, s->view.zoom_q16 / 65536.0, s->tf.name,
              s->window.lo, s->window.hi);
 }

@@ -5,20 +5,23 @@
  * image and the core's is the core's fixed-point error alone. It skips nothing (no run-length encoding, no skip
  * links), builds the pre-integrated table by brute force, and keeps every intermediate value in double. The
  * only quantisations are the ones the spec imposes on both implementations: the 8-bit window, the table's
- * nearest-entry lookup and the 2^-16 grid of the slice offsets. Callers hand the reference the quantised inputs
- * the core sees (spacing q / 65536, zoom q / 65536, TF scalar q / 256, colours q / 65535).
+ * nearest-entry lookup, the 2^-16 grid of the slice offsets and, when asked for (section 4b), 8-bit tables.
+ * Callers hand the reference the quantised inputs the core sees (spacing q / 65536, zoom q / 65536, TF scalar
+ * q / 256, colours q / 65535).
  *
  * One file per stage (VolPack's shape):
  *   ref_window.c   section 1: raw voxels to the 8-bit scalar domain
  *   ref_tables.c   section 2: transfer function, classification, point table, pre-integrated table
  *   ref_factor.c   section 3: rotation, principal axis, shears, slice offsets, slab length, warp map
- *   ref_render.c   sections 4 and 5: compositing into the intermediate image, the warp, the whole frame
+ *   ref_options.c  section 4b: bilinear table lookup, 8-bit tables, the lut slab-length correction
+ *   ref_render.c   sections 4, 4b and 5: compositing into the intermediate image, the warp, the whole frame
  * Every function that returns int (but ref_table_index) returns 0, or -1 on an argument outside the spec's ranges
  * or when out of memory.
  */
 #ifndef REF_H
 #define REF_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 /* A windowed 8-bit scalar volume S[x][y][z], x fastest in memory. spacing: the quantised spacing the core uses
@@ -34,7 +37,14 @@ typedef struct ref_tf_point {
     double s, r, g, b, a;
 } ref_tf_point_t;
 
-typedef enum ref_mode { REF_MODE_POINT, REF_MODE_PREINT1 } ref_mode_t;
+/* point and preint1: section 4; preclass (voxels classified first, their entries interpolated): section 4b. */
+typedef enum ref_mode { REF_MODE_POINT, REF_MODE_PREINT1, REF_MODE_PRECLASS } ref_mode_t;
+
+/* Section 4b. Lookup of a sample in a table: the nearest entry (section 2) or bilinear between entries. */
+typedef enum ref_lookup { REF_LOOKUP_NEAREST = 0, REF_LOOKUP_BILINEAR } ref_lookup_t;
+
+/* Section 4b. Slab length: tables built for the view's d, or built for d0 = 1 and every segment corrected. */
+typedef enum ref_correction { REF_CORRECTION_REBUILD = 0, REF_CORRECTION_LUT } ref_correction_t;
 
 typedef struct ref_params {
     ref_mode_t mode;
@@ -48,6 +58,10 @@ typedef struct ref_params {
      * reference's own offsets. */
     const int32_t *slice_offsets_q16;
     int slice_k_axis, slice_k_flip;
+    /* Section 4b. Zero is each one's default, so initialisers that stop before these keep the section 4 image. */
+    ref_lookup_t lookup;         /* nearest (default) or bilinear; ignored by preclass (voxels' nearest entries) */
+    int table_bits;              /* 16 (default; 0 means 16) or 8: every table value rounded to a multiple of 1/255 */
+    ref_correction_t correction; /* rebuild (default) or lut */
 } ref_params_t;
 
 typedef struct ref_view {
@@ -81,6 +95,8 @@ typedef struct ref_factor {
 #define REF_MAX_TF_POINTS 1024
 #define REF_MAX_ANISOTROPY 64.0
 #define REF_ERT_THRESHOLD (1.0 - 1.0 / 1024.0) /* early ray termination: A >= 1 - 2^-10 */
+#define REF_LUT_KNOTS 1024                       /* lut correction: knots a_k = k / 1024, k = 0..1024 */
+#define REF_LUT_D0 1.0                           /* lut correction: the slab length the tables are built for */
 
 /* ---- ref_window.c -------------------------------------------------------------------------------------- */
 
@@ -107,6 +123,33 @@ int ref_preint_table(const ref_tf_point_t *tf, int npoints, int N, double d, dou
 /* The nearest entry idx(s) = round(s (N - 1) / 255) of a real-valued scalar s in [0, 255]. */
 int ref_table_index(double s, int N);
 
+/* ---- ref_options.c ------------------------------------------------------------------------------------- */
+
+/* One table entry for a sample s in [0, 255] of a point table (N x 4): nearest, T[idx(s)]; bilinear, with
+ * x = s (N - 1) / 255, i = min(floor(x), N - 2), f = x - i: (1 - f) T[i] + f T[i + 1]. out: a, r, g, b. */
+void ref_lookup_point(const double *table, int N, ref_lookup_t lookup, double s, double out[4]);
+
+/* One entry of a pre-integrated table (N x N x 4, front major) for a front and a back sample: nearest,
+ * T[idx(front)][idx(back)]; bilinear, (1-f)(1-g) T[i][j] + f(1-g) T[i+1][j] + (1-f)g T[i][j+1] + fg T[i+1][j+1]
+ * with (i, f) from the front sample and (j, g) from the back one as in ref_lookup_point. */
+void ref_lookup_preint(const double *table, int N, ref_lookup_t lookup, double front, double back, double out[4]);
+
+/* Table bits: with 8, every one of the count values becomes round(255 x) / 255; with 16 (or 0) nothing changes.
+ * Returns -1 for other bits. */
+int ref_table_bits(double *values, size_t count, int bits);
+
+/* The lut correction for rho = d / d0 > 0: F(a) = 1 - (1 - a)^rho and G(a) = F(a) / a, G(0) = rho, at the knots
+ * a_k = k / REF_LUT_KNOTS. */
+typedef struct ref_lut {
+    double rho;
+    double F[REF_LUT_KNOTS + 1], G[REF_LUT_KNOTS + 1];
+} ref_lut_t;
+
+int ref_lut_init(ref_lut_t *lut, double rho);
+
+/* seg = (a, C_r, C_g, C_b) -> (F(a), C G(a)), F and G linear between the knots (a clamped to [0, 1]). */
+void ref_lut_correct(const ref_lut_t *lut, double seg[4]);
+
 /* ---- ref_factor.c -------------------------------------------------------------------------------------- */
 
 /* sin and cos of an angle in binary angle units (exact 0 and +-1 at multiples of a quarter turn). */
@@ -127,17 +170,24 @@ void ref_factor_warp(const ref_factor_t *f, double px, double py, double *u, dou
 
 /* ---- ref_render.c -------------------------------------------------------------------------------------- */
 
-/* Composite every slice (point: table is the N x 4 point table) or slab (preint1: the N x N x 4 table) into
- * the intermediate image inter[4 (v int_w + u) + 0..3] = premultiplied R, G, B and opacity A. */
+/* Composite every slice (point and preclass: table is the N x 4 point table) or slab (preint1: the N x N x 4
+ * table) into the intermediate image inter[4 (v int_w + u) + 0..3] = premultiplied R, G, B and opacity A, with
+ * nearest lookup and no correction (section 4, and preclass of section 4b). */
 int ref_composite(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, int N, const double *table,
                   double *inter);
+
+/* The same with the options of section 4b: the lookup, and when lut is not NULL every segment corrected by it
+ * (after the lookup, or after the interpolation of the classified voxels for preclass). The table is used as
+ * given: build it for the slab length wanted (d, or d0 with a lut) and apply the table bits first. */
+int ref_composite_ex(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
+                     const double *table, const ref_lut_t *lut, double *inter);
 
 /* Resample the intermediate image bilinearly (outside: transparent) onto the final image:
  * rgb[3 (py out_w + px) + c] = C + (1 - A) background[c]. */
 void ref_warp(const ref_factor_t *f, const double *inter, const double background[3], double *rgb);
 
-/* The whole frame: factor, tables for the slab length, composite, warp. rgb: out_w * out_h * 3 in [0, 1].
- * factor_out may be NULL. */
+/* The whole frame: factor, tables (for the slab length d, or for d0 = 1 with the lut correction for rho = d),
+ * table bits, composite, warp. rgb: out_w * out_h * 3 in [0, 1]. factor_out may be NULL. */
 int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const ref_params_t *p,
                const ref_view_t *view, int out_w, int out_h, double *rgb, ref_factor_t *factor_out);
 

@@ -150,8 +150,8 @@ int ref_factor(const ref_volume_t *vol, const ref_view_t *view, int out_w, int o
     f->nk = vol->dims[k];
 
     double dk = fabs(f->dir[k]);
-    f->si = -f->dir[f->i_axis] / dk;
-    f->sj = -f->dir[f->j_axis] / dk;
+    f->si = fmax(-1.0, fmin(1.0, -f->dir[f->i_axis] / dk)); /* a tie can give 1 + 2^-20: clamped (spec) */
+    f->sj = fmax(-1.0, fmin(1.0, -f->dir[f->j_axis] / dk));
     f->ti = fmax(0.0, -f->si * (f->nk - 1));
     f->tj = fmax(0.0, -f->sj * (f->nk - 1));
     double ri = f->si * f->Sr[f->i_axis], rj = f->sj * f->Sr[f->j_axis], rk = f->Sr[k];

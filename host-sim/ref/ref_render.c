@@ -1,4 +1,4 @@
-/* ref_render.c: compositing into the intermediate image, the warp, and the whole frame (sections 4 and 5). */
+/* ref_render.c: compositing into the intermediate image, the warp, and the whole frame (sections 4, 4b and 5). */
 #include "ref/ref.h"
 
 #include <math.h>
@@ -36,6 +36,34 @@ static double sample(const uint8_t *slice, int ni, double x, double y)
     return (1 - fy) * row0 + fy * row1;
 }
 
+/* Preclass: the classified entries (a, C_r, C_g, C_b) of an ni-wide slice, interpolated channel by channel with
+ * the bilinear weights of the inside position (x, y) (a neighbour beyond the last voxel has weight 0, not read). */
+static void sample_entries(const double *cls, int ni, double x, double y, double out[4])
+{
+    double x0 = floor(x), y0 = floor(y), fx = x - x0, fy = y - y0;
+    const double *p = cls + 4 * ((size_t)y0 * (size_t)ni + (size_t)x0);
+    for (int c = 0; c < 4; c++) {
+        double row0 = fx > 0 ? (1 - fx) * p[c] + fx * p[4 + c] : p[c];
+        if (!(fy > 0)) {
+            out[c] = row0;
+            continue;
+        }
+        const double *q = p + 4 * (size_t)ni; /* the next row, only when it has weight */
+        double row1 = fx > 0 ? (1 - fx) * q[c] + fx * q[4 + c] : q[c];
+        out[c] = (1 - fy) * row0 + fy * row1;
+    }
+}
+
+/* Preclass: every voxel of a slice to the point-table entry of its own scalar, idx(S). */
+static void classify_slice(const uint8_t *slice, size_t count, int N, const double *table, double *cls)
+{
+    for (size_t n = 0; n < count; n++) {
+        const double *e = table + 4 * (size_t)ref_table_index(slice[n], N);
+        for (int c = 0; c < 4; c++)
+            cls[4 * n + c] = e[c];
+    }
+}
+
 /* Front to back: C += (1 - A) C_seg, A += (1 - A) a_seg. pix: R, G, B, A; seg: a, r, g, b. */
 static void composite(double *pix, const double *seg)
 {
@@ -54,23 +82,43 @@ static void covered(double ou, int n, int size, int *lo, int *hi)
     *hi = b > size - 1 ? size - 1 : (int)b;
 }
 
+static int mode_valid(ref_mode_t mode)
+{
+    return mode == REF_MODE_POINT || mode == REF_MODE_PREINT1 || mode == REF_MODE_PRECLASS;
+}
+
+static int lookup_valid(ref_lookup_t lookup)
+{
+    return lookup == REF_LOOKUP_NEAREST || lookup == REF_LOOKUP_BILINEAR;
+}
+
 int ref_composite(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, int N, const double *table,
                   double *inter)
 {
+    return ref_composite_ex(vol, f, mode, REF_LOOKUP_NEAREST, N, table, NULL, inter);
+}
+
+int ref_composite_ex(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
+                     const double *table, const ref_lut_t *lut, double *inter)
+{
     if (!vol || !vol->scalars || !f || !table || !inter || N < REF_MIN_TABLE || N > REF_MAX_TABLE ||
-        (mode != REF_MODE_POINT && mode != REF_MODE_PREINT1))
+        !mode_valid(mode) || !lookup_valid(lookup))
         return -1;
     uint8_t *std = standard_slices(vol, f);
-    if (!std)
-        return -1;
     size_t slice_size = (size_t)f->ni * (size_t)f->nj;
+    double *cls = mode == REF_MODE_PRECLASS ? malloc(4 * slice_size * sizeof(double)) : NULL;
+    if (!std || (mode == REF_MODE_PRECLASS && !cls)) {
+        free(std);
+        free(cls);
+        return -1;
+    }
     for (size_t n = 0; n < 4 * (size_t)f->int_w * (size_t)f->int_h; n++)
         inter[n] = 0;
 
-    /* point: segment k is slice k. preint1: segment k is the slab between slices k and k + 1. */
-    int segments = mode == REF_MODE_POINT ? f->nk : f->nk - 1;
+    /* point, preclass: segment k is slice k. preint1: segment k is the slab between slices k and k + 1. */
+    int segments = mode == REF_MODE_PREINT1 ? f->nk - 1 : f->nk;
     for (int k = 0; k < segments; k++) {
-        int last = mode == REF_MODE_POINT ? k : k + 1; /* the pixels must be inside slices k..last */
+        int last = mode == REF_MODE_PREINT1 ? k + 1 : k; /* the pixels must be inside slices k..last */
         int u_lo = 0, u_hi = f->int_w - 1, v_lo = 0, v_hi = f->int_h - 1;
         double ou[2], ov[2];
         for (int q = 0; q <= last - k; q++) {
@@ -84,20 +132,28 @@ int ref_composite(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mod
             v_hi = b < v_hi ? b : v_hi;
         }
         const uint8_t *front = std + (size_t)k * slice_size, *back = front + slice_size;
+        if (cls)
+            classify_slice(front, slice_size, N, table, cls);
         for (int v = v_lo; v <= v_hi; v++) {
             for (int u = u_lo; u <= u_hi; u++) {
-                double *pix = inter + 4 * ((size_t)v * (size_t)f->int_w + (size_t)u);
+                double *pix = inter + 4 * ((size_t)v * (size_t)f->int_w + (size_t)u), seg[4];
                 if (pix[3] >= REF_ERT_THRESHOLD)
                     continue; /* early ray termination: no further segments */
-                size_t entry = (size_t)ref_table_index(sample(front, f->ni, u - ou[0], v - ov[0]), N);
-                if (mode == REF_MODE_PREINT1)
-                    entry = entry * (size_t)N +
-                            (size_t)ref_table_index(sample(back, f->ni, u - ou[1], v - ov[1]), N);
-                composite(pix, table + 4 * entry);
+                if (mode == REF_MODE_PRECLASS)
+                    sample_entries(cls, f->ni, u - ou[0], v - ov[0], seg);
+                else if (mode == REF_MODE_POINT)
+                    ref_lookup_point(table, N, lookup, sample(front, f->ni, u - ou[0], v - ov[0]), seg);
+                else
+                    ref_lookup_preint(table, N, lookup, sample(front, f->ni, u - ou[0], v - ov[0]),
+                                      sample(back, f->ni, u - ou[1], v - ov[1]), seg);
+                if (lut)
+                    ref_lut_correct(lut, seg); /* after the lookup (and the table bits, applied to the table) */
+                composite(pix, seg);
             }
         }
     }
     free(std);
+    free(cls);
     return 0;
 }
 
@@ -131,25 +187,36 @@ int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, c
 {
     ref_factor_t f;
     if (!vol || !vol->scalars || !p || !rgb || p->table_size < REF_MIN_TABLE || p->table_size > REF_MAX_TABLE ||
-        (p->mode != REF_MODE_POINT && p->mode != REF_MODE_PREINT1) || ref_factor(vol, view, out_w, out_h, &f))
+        !mode_valid(p->mode) || !lookup_valid(p->lookup) ||
+        (p->table_bits != 0 && p->table_bits != 16 && p->table_bits != 8) ||
+        (p->correction != REF_CORRECTION_REBUILD && p->correction != REF_CORRECTION_LUT) ||
+        ref_factor(vol, view, out_w, out_h, &f))
         return -1;
     if (p->slice_offsets_q16 && ref_factor_adopt_offsets(&f, p->slice_offsets_q16, p->slice_k_axis, p->slice_k_flip))
         return -2;
     size_t N = (size_t)p->table_size;
-    size_t entries = p->mode == REF_MODE_POINT ? N : N * N;
+    size_t entries = p->mode == REF_MODE_PREINT1 ? N * N : N; /* preclass classifies with the point table */
+    int lut_on = p->correction == REF_CORRECTION_LUT;
+    double d = lut_on ? REF_LUT_D0 : f.slab; /* lut: tables for d0, every segment corrected for rho = d / d0 */
     double *table = malloc(4 * entries * sizeof(double));
     double *inter = malloc(4 * (size_t)f.int_w * (size_t)f.int_h * sizeof(double));
+    ref_lut_t *lut = lut_on ? malloc(sizeof *lut) : NULL;
     int rc = -1;
-    if (table && inter) {
-        rc = p->mode == REF_MODE_POINT ? ref_point_table(tf, npoints, p->table_size, f.slab, table)
-                                       : ref_preint_table(tf, npoints, p->table_size, f.slab, table);
+    if (table && inter && (lut || !lut_on)) {
+        rc = p->mode == REF_MODE_PREINT1 ? ref_preint_table(tf, npoints, p->table_size, d, table)
+                                         : ref_point_table(tf, npoints, p->table_size, d, table);
         if (rc == 0)
-            rc = ref_composite(vol, &f, p->mode, p->table_size, table, inter);
+            rc = ref_table_bits(table, 4 * entries, p->table_bits);
+        if (rc == 0 && lut)
+            rc = ref_lut_init(lut, f.slab / REF_LUT_D0);
+        if (rc == 0)
+            rc = ref_composite_ex(vol, &f, p->mode, p->lookup, p->table_size, table, lut, inter);
         if (rc == 0)
             ref_warp(&f, inter, p->background, rgb);
     }
     free(table);
     free(inter);
+    free(lut);
     if (rc == 0 && factor_out)
         *factor_out = f;
     return rc;

@@ -1,0 +1,78 @@
+/*
+ * segment.h: what one segment (a slice sample, or a slab) adds to a pixel: the table entry, looked up nearest or
+ * bilinear in an 8- or 16-bit table, corrected for the slab length by the lut if asked (docs/algorithm.md,
+ * section 4b), then composited front to back. Static inline so that the compositing loops keep them in line.
+ *
+ * All values here are Q1.15 (1.0 = 32768), r, g, b, a, colour premultiplied.
+ */
+#ifndef VF_SEGMENT_H
+#define VF_SEGMENT_H
+
+#include "render.h"
+
+/* Entry e (index into the table, in entries) as Q1.15. An 8-bit value v is v / 255: (257 v + 1) / 2 is
+ * v * 32768 / 255 within half an LSB, and 255 gives exactly 32768. */
+static inline void vfi_fetch(const vfi_lookup_ctx_t *c, size_t e, uint32_t out[4])
+{
+    if (c->q15) {
+        const uint16_t *p = c->q15 + e * 4;
+        out[0] = p[0], out[1] = p[1], out[2] = p[2], out[3] = p[3];
+    } else {
+        const uint8_t *p = c->u8 + e * 4;
+        for (int k = 0; k < 4; k++)
+            out[k] = (257u * p[k] + 1u) >> 1;
+    }
+}
+
+/* x = (1 - f) x + f y per channel, f in Q0.16 (up to 65536). */
+static inline void vfi_lerp(uint32_t x[4], const uint32_t y[4], uint32_t f)
+{
+    for (int k = 0; k < 4; k++)
+        x[k] = (uint32_t)(((uint64_t)x[k] * (65536u - f) + (uint64_t)y[k] * f + 0x8000u) >> 16);
+}
+
+/* A bilinear table position (Q.16, from vfi_position_of_sample) as an entry below and a fraction to the next:
+ * i = min(floor(x), N - 2), f = x - i (so f is 65536 at the last entry). */
+static inline void vfi_split_position(uint32_t n, uint32_t x_q16, uint32_t *i, uint32_t *f)
+{
+    uint32_t whole = x_q16 >> 16;
+    *i = whole < n - 1 ? whole : n - 2;
+    *f = x_q16 - (*i << 16);
+}
+
+/* The lut correction: a' = F(a), C' = C G(a), F and G linear between knots 1/1024 apart (32 LSB of Q1.15). */
+static inline void vfi_correct(const vfi_lookup_ctx_t *c, uint32_t seg[4])
+{
+    uint32_t a = seg[3] > VFI_ONE_Q15 ? VFI_ONE_Q15 : seg[3];
+    uint32_t k = a >> 5, f = a & 31u;
+    uint32_t k1 = k < 1024 ? k + 1 : 1024;
+    uint32_t fa = (c->lut_f[k] * (32u - f) + c->lut_f[k1] * f + 16u) >> 5;
+    uint64_t g = ((uint64_t)c->lut_g[k] * (32u - f) + (uint64_t)c->lut_g[k1] * f + 16u) >> 5; /* Q16.16 */
+    for (int n = 0; n < 3; n++)
+        seg[n] = (uint32_t)(((uint64_t)seg[n] * g + 0x8000u) >> 16);
+    seg[3] = fa;
+}
+
+/* Front to back: C += (1 - A) C_seg, A += (1 - A) a_seg. True when the pixel became opaque. */
+static inline bool vfi_blend(uint16_t *px, const uint32_t seg[4])
+{
+    uint32_t t = VFI_ONE_Q15 - px[3];
+    px[0] = (uint16_t)(px[0] + ((t * seg[0] + 0x4000u) >> 15));
+    px[1] = (uint16_t)(px[1] + ((t * seg[1] + 0x4000u) >> 15));
+    px[2] = (uint16_t)(px[2] + ((t * seg[2] + 0x4000u) >> 15));
+    px[3] = (uint16_t)(px[3] + ((t * (seg[3] > VFI_ONE_Q15 ? VFI_ONE_Q15 : seg[3]) + 0x4000u) >> 15));
+    return px[3] >= VFI_OPAQUE_Q15;
+}
+
+/* The same for an entry of a 16-bit table used as it is (the default path: no copy, no conversion). */
+static inline bool vfi_blend_q15(uint16_t *px, const uint16_t *e)
+{
+    uint32_t t = VFI_ONE_Q15 - px[3];
+    px[0] = (uint16_t)(px[0] + ((t * e[0] + 0x4000u) >> 15));
+    px[1] = (uint16_t)(px[1] + ((t * e[1] + 0x4000u) >> 15));
+    px[2] = (uint16_t)(px[2] + ((t * e[2] + 0x4000u) >> 15));
+    px[3] = (uint16_t)(px[3] + ((t * e[3] + 0x4000u) >> 15));
+    return px[3] >= VFI_OPAQUE_Q15;
+}
+
+#endif
