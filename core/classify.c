@@ -27,12 +27,12 @@ vf_status_t vfi_classify_alloc(vfi_classify_t *cls, uint32_t n, vf_lookup_t look
     cls->visible_before = vfi_arena_alloc(arena, sizeof(uint16_t) * (n + 1));
     if (!cls->tau_q28 || !cls->colour_q30 || !cls->weight_q30 || !cls->visible_before)
         return VF_ERR_NOMEM;
-    const uint32_t margin = lookup == VF_LOOKUP_BILINEAR ? 1 : 0;
     for (uint32_t v = 0; v < 256; v++) {
         uint32_t e = (v * (n - 1) * 2 + 255) / 510; /* round(v (N - 1) / 255) */
+        uint32_t below = v * (n - 1) / 255, above = (v * (n - 1) + 254) / 255; /* floor and ceil */
         cls->entry_of_scalar[v] = (uint16_t)e;
-        cls->first_of_scalar[v] = (uint16_t)(e >= margin ? e - margin : 0);
-        cls->end_of_scalar[v] = (uint16_t)(e + 1 + margin <= n ? e + 1 + margin : n);
+        cls->first_of_scalar[v] = (uint16_t)(lookup == VF_LOOKUP_BILINEAR ? below : e);
+        cls->end_of_scalar[v] = (uint16_t)((lookup == VF_LOOKUP_BILINEAR ? above : e) + 1);
     }
     return VF_OK;
 }

@@ -16,7 +16,8 @@ typedef struct vfi_classify {
     uint16_t *visible_before;      /* [n + 1] how many entries below i have tau > 0 */
     uint16_t entry_of_scalar[256]; /* entry of each 8-bit voxel scalar (the same rounding as samples) */
     /* The entries a sample between scalars lo and hi can touch are first_of_scalar[lo] .. end_of_scalar[hi] - 1:
-     * its nearest entry, widened by one on each side for bilinear lookups (which also read the next entry). */
+     * nearest lookups round(x); bilinear lookups floor(x) .. ceil(x), x = s (N - 1) / 255 (the entry above a
+     * whole x has weight 0). */
     uint16_t first_of_scalar[256];
     uint16_t end_of_scalar[256];
 } vfi_classify_t;
@@ -45,12 +46,17 @@ static inline bool vfi_range_visible(const vfi_classify_t *cls, uint32_t scalar_
     return cls->visible_before[cls->end_of_scalar[scalar_hi]] != cls->visible_before[cls->first_of_scalar[scalar_lo]];
 }
 
-/* Table position of a sample in Q8.32 for a bilinear lookup: x = s (N - 1) / 255 in Q.16, within 2^-12 of exact
- * (the fraction only weights two entries; which entries, near an entry, is the nearest lookup's exact job). */
+/* Table position of a sample in Q8.32 for a bilinear lookup: x = s (N - 1) / 255 in Q.16, floor(x 2^16) exactly
+ * (so that a sample on an entry reads that entry alone). floor(X / (255 2^16)) with X = s (N - 1) < 2^50 is
+ * floor(Y / 255) with Y = X >> 16 < 2^34, divided in two 32-bit steps: Y = 256 hi + lo, hi = 255 q + r. */
 static inline uint32_t vfi_position_of_sample(const vfi_classify_t *cls, uint64_t sample_q32)
 {
-    uint64_t x_q12 = (sample_q32 * (cls->n - 1)) >> 20; /* s (N - 1) in Q.12, below 2^30 */
-    return (uint32_t)((x_q12 * UINT64_C(1052688)) >> 24); /* 1052688 = 2^28 / 255 */
+    if (cls->n == 256) /* (N - 1) / 255 = 1 */
+        return (uint32_t)(sample_q32 >> 16);
+    uint64_t y = (sample_q32 * (cls->n - 1)) >> 16;
+    uint32_t hi = (uint32_t)(y >> 8), lo = (uint32_t)(y & 0xFFu);
+    uint32_t q = hi / 255u, r = hi - q * 255u;
+    return (q << 8) + ((r << 8) | lo) / 255u;
 }
 
 #endif

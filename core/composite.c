@@ -243,10 +243,34 @@ static void segment_order0(const row_job_t *job, const uint8_t *p, bool preclass
         vfi_correct(c, seg);
 }
 
+/* point with the default table: the loop on its own, everything it reads in locals (as row_preint1_plain) */
+static void row_point_plain(const row_job_t *job, run_merge_t *m)
+{
+    const slice_place_t *sl = job->front;
+    const uint32_t row = job->row, cu = (uint32_t)sl->cu;
+    const uint16_t *table = job->lookup.q15;
+    const vfi_classify_t *cls = job->cls;
+    const uint8_t *data = job->row_data;
+    uint16_t *next = job->next, *pixels = job->pixels;
+    int32_t a, b;
+    while (merge_next(m, &a, &b)) {
+        a = a > sl->u_lo ? a : sl->u_lo;
+        b = b < sl->u_hi + 1 ? b : sl->u_hi + 1;
+        for (uint32_t u = a < b ? next_open(next, (uint32_t)a) : (uint32_t)b; u < (uint32_t)b; u = next_open(next, u + 1)) {
+            const uint16_t *e = table + (size_t)vfi_entry_of_sample(cls, sample_q32(data + (u - cu), row, sl)) * 4;
+            if (e[3] && vfi_blend_q15(pixels + (size_t)u * 4, e))
+                next[u] = (uint16_t)(u + 1);
+        }
+    }
+}
+
 static void row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
 {
     const slice_place_t *sl = job->front;
-    const bool plain = job->plain && !preclass;
+    if (job->plain && !preclass) {
+        row_point_plain(job, m);
+        return;
+    }
     int32_t a, b;
     while (merge_next(m, &a, &b)) {
         a = a > sl->u_lo ? a : sl->u_lo;
@@ -254,18 +278,9 @@ static void row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
         if (a >= b)
             continue;
         for (uint32_t u = next_open(job->next, (uint32_t)a); u < (uint32_t)b; u = next_open(job->next, u + 1)) {
-            const uint8_t *p = job->row_data + (u - (uint32_t)sl->cu);
-            uint16_t *px = job->pixels + (size_t)u * 4;
-            bool opaque;
-            if (plain) {
-                const uint16_t *e = job->lookup.q15 + (size_t)vfi_entry_of_sample(job->cls, sample_q32(p, job->row, sl)) * 4;
-                opaque = e[3] && vfi_blend_q15(px, e);
-            } else {
-                uint32_t seg[4];
-                segment_order0(job, p, preclass, seg);
-                opaque = seg[3] && vfi_blend(px, seg);
-            }
-            if (opaque)
+            uint32_t seg[4];
+            segment_order0(job, job->row_data + (u - (uint32_t)sl->cu), preclass, seg);
+            if (seg[3] && vfi_blend(job->pixels + (size_t)u * 4, seg))
                 job->next[u] = (uint16_t)(u + 1);
         }
     }
@@ -294,6 +309,38 @@ static void segment_preint1(const row_job_t *job, uint32_t pos_f, uint32_t pos_b
         vfi_correct(c, seg);
 }
 
+/* The default path (nearest lookup, 16-bit table, no lut) on its own, with everything it reads in locals: this
+ * loop is where preint1 frames spend their time. */
+static void row_preint1_plain(const row_job_t *job, run_merge_t *m, int32_t lo, int32_t hi)
+{
+    const slice_place_t *fr = job->front, *bk = job->back;
+    const uint64_t front_slice = job->t, back_tag = (uint64_t)(job->t + 1) << 32;
+    const uint32_t n = job->lookup.n, row = job->row;
+    const uint16_t *table = job->lookup.q15;
+    const vfi_classify_t *cls = job->cls;
+    const uint8_t *front_row = job->row_data, *back_row = job->back_row_data;
+    const uint32_t front_cu = (uint32_t)fr->cu, back_cu = (uint32_t)bk->cu;
+    const uint32_t front_shift = (uint32_t)job->front_shift, back_shift = (uint32_t)job->back_shift;
+    vfi_sample_t *front_buf = job->front_buf, *back_buf = job->back_buf;
+    uint16_t *next = job->next, *pixels = job->pixels;
+    int32_t a, b;
+    while (merge_next(m, &a, &b)) {
+        a = a > lo ? a : lo;
+        b = b < hi + 1 ? b : hi + 1;
+        for (uint32_t u = a < b ? next_open(next, (uint32_t)a) : (uint32_t)b; u < (uint32_t)b; u = next_open(next, u + 1)) {
+            vfi_sample_t front = front_buf[u - front_shift];
+            uint32_t row_f = (uint32_t)front; /* front entry times N */
+            if ((front >> 32) != front_slice)
+                row_f = n * vfi_entry_of_sample(cls, sample_q32(front_row + (u - front_cu), row, fr));
+            uint32_t pos_b = vfi_entry_of_sample(cls, sample_q32(back_row + (u - back_cu), row, bk));
+            back_buf[u - back_shift] = back_tag | (pos_b * n);
+            const uint16_t *e = table + ((size_t)row_f + pos_b) * 4;
+            if (e[3] && vfi_blend_q15(pixels + (size_t)u * 4, e))
+                next[u] = (uint16_t)(u + 1);
+        }
+    }
+}
+
 static void row_preint1(const row_job_t *job, run_merge_t *m)
 {
     const slice_place_t *fr = job->front, *bk = job->back;
@@ -302,6 +349,10 @@ static void row_preint1(const row_job_t *job, run_merge_t *m)
     int32_t a, b;
     int32_t lo = fr->u_lo > bk->u_lo ? fr->u_lo : bk->u_lo;
     int32_t hi = fr->u_hi < bk->u_hi ? fr->u_hi : bk->u_hi;
+    if (job->plain) {
+        row_preint1_plain(job, m, lo, hi);
+        return;
+    }
     while (merge_next(m, &a, &b)) {
         a = a > lo ? a : lo;
         b = b < hi + 1 ? b : hi + 1;
@@ -324,17 +375,9 @@ static void row_preint1(const row_job_t *job, run_merge_t *m)
                 pos_b = vfi_entry_of_sample(job->cls, sample_q32(job->back_row_data + (u - (uint32_t)bk->cu), job->row, bk));
                 job->back_buf[(int32_t)u - job->back_shift] = back_tag | (pos_b * n);
             }
-            uint16_t *px = job->pixels + (size_t)u * 4;
-            bool opaque;
-            if (job->plain) {
-                const uint16_t *e = job->lookup.q15 + ((size_t)pos_f + pos_b) * 4;
-                opaque = e[3] && vfi_blend_q15(px, e);
-            } else {
-                uint32_t seg[4];
-                segment_preint1(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg);
-                opaque = seg[3] && vfi_blend(px, seg);
-            }
-            if (opaque)
+            uint32_t seg[4];
+            segment_preint1(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg);
+            if (seg[3] && vfi_blend(job->pixels + (size_t)u * 4, seg))
                 job->next[u] = (uint16_t)(u + 1);
         }
     }

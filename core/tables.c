@@ -12,6 +12,7 @@
 #define HALF_Q30 (UINT64_C(1) << 29)
 
 static vfi_seg_t point_seg(const vfi_classify_t *cls, uint32_t i, uint32_t slab_q16);
+static uint32_t opacity_q30(uint64_t tau_length_q28);
 static void intervals_for_length(const vfi_classify_t *cls, uint64_t length_q28, vfi_seg_t *out);
 static void block_composites(const vfi_table_scratch_t *scratch, uint32_t count, uint32_t r);
 static inline void store(vfi_table_out_t out, size_t entry, const vfi_seg_t *s);
@@ -55,27 +56,36 @@ void vfi_point_table(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out
     }
 }
 
+/* The oracle: docs/algorithm.md section 2 read literally, each entry on its own. It shares nothing with the
+ * incremental builder but the exponential and the classification, so that a slip in how that one groups or
+ * evaluates intervals cannot hide in both. */
 void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
                                  vfi_table_out_t out)
 {
     const uint32_t n = cls->n;
-    vfi_seg_t *iv = scratch->interval;
-    for (uint32_t i = 0; i < n; i++) { /* the diagonal (a constant scalar) is the point table */
-        vfi_seg_t s = point_seg(cls, i, slab_q16);
-        store(out, (size_t)i * n + i, &s);
-    }
-    for (uint32_t r = 1; r < n; r++) {
-        intervals_for_length(cls, vfi_udiv64(((uint64_t)slab_q16 << 12) + r / 2, r), iv);
-        for (uint32_t f = 0; f + r < n; f++) {
-            vfi_seg_t up = iv[f], down = iv[f + r - 1];
-            for (uint32_t m = f + 1; m < f + r; m++) /* front f < back: intervals f, f+1, .. in order */
-                up = over(&up, &iv[m]);
-            for (uint32_t m = f + r - 1; m-- > f;) /* front f + r > back f: intervals f+r-1 .. f */
-                down = over(&down, &iv[m]);
-            store(out, (size_t)f * n + f + r, &up);
-            store(out, (size_t)(f + r) * n + f, &down);
+    (void)scratch;
+    for (uint32_t f = 0; f < n; f++)
+        for (uint32_t b = 0; b < n; b++) {
+            vfi_seg_t acc;
+            if (f == b) {
+                acc = point_seg(cls, f, slab_q16);
+            } else {
+                uint32_t r = f < b ? b - f : f - b;
+                uint64_t length_q28 = vfi_udiv64(((uint64_t)slab_q16 << 12) + r / 2, r); /* d / r */
+                acc.r = acc.g = acc.b = acc.a = 0;
+                for (uint32_t k = 0; k < r; k++) { /* the intervals from f towards b, front to back */
+                    uint32_t m = f < b ? f + k : f - 1 - k;
+                    uint64_t mean_q24 = ((uint64_t)cls->tau_q28[m] + cls->tau_q28[m + 1] + 16) >> 5;
+                    vfi_seg_t iv;
+                    iv.a = mean_q24 ? opacity_q30((mean_q24 * length_q28 + (UINT64_C(1) << 23)) >> 24) : 0;
+                    iv.r = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 0] * iv.a + HALF_Q30) >> 30);
+                    iv.g = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 1] * iv.a + HALF_Q30) >> 30);
+                    iv.b = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 2] * iv.a + HALF_Q30) >> 30);
+                    acc = over(&acc, &iv);
+                }
+            }
+            store(out, (size_t)f * n + b, &acc);
         }
-    }
 }
 
 void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
@@ -103,11 +113,15 @@ void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, 
          * back entry f) it is the back prefix of that next block in front of the back suffix of f's block. */
         for (uint32_t f = 0, in_block = 0; f + r < n; f++, in_block = in_block + 1 == r ? 0 : in_block + 1) {
             vfi_seg_t up, down;
+            uint32_t split = f + r - in_block; /* where the next block starts (f + r when f starts one) */
             if (below[f + r] == below[f]) {
                 up = down = zero;
-            } else if (in_block == 0) {
+            } else if (in_block == 0 || below[f + r] == below[split]) { /* nothing visible in the prefix part */
                 up = suf[f];
                 down = back_suf[f];
+            } else if (below[split] == below[f]) { /* nothing visible in the suffix part */
+                up = pre[f + r - 1];
+                down = back_pre[f + r - 1];
             } else {
                 up = over(&suf[f], &pre[f + r - 1]);
                 down = over(&back_pre[f + r - 1], &back_suf[f]);
@@ -115,6 +129,31 @@ void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, 
             store(out, (size_t)f * n + f + r, &up);
             store(out, (size_t)(f + r) * n + f, &down);
         }
+    }
+}
+
+/* One step of the suffix chains (from the block's end down to m) and of the prefix chains (from the block's start
+ * up to m). An empty interval (opacity 0, so colour 0) leaves a composite as it was: no arithmetic, which is
+ * most of the work saved for transfer functions with narrow peaks. */
+static inline void chain_down(const vfi_seg_t *iv, vfi_seg_t *suf, vfi_seg_t *back_suf, uint32_t m)
+{
+    if (iv[m].a == 0) {
+        suf[m] = suf[m + 1];
+        back_suf[m] = back_suf[m + 1];
+    } else {
+        suf[m] = over(&iv[m], &suf[m + 1]);
+        back_suf[m] = over(&back_suf[m + 1], &iv[m]);
+    }
+}
+
+static inline void chain_up(const vfi_seg_t *iv, vfi_seg_t *pre, vfi_seg_t *back_pre, uint32_t m)
+{
+    if (iv[m].a == 0) {
+        pre[m] = pre[m - 1];
+        back_pre[m] = back_pre[m - 1];
+    } else {
+        pre[m] = over(&pre[m - 1], &iv[m]);
+        back_pre[m] = over(&iv[m], &back_pre[m - 1]);
     }
 }
 
@@ -138,21 +177,13 @@ static void block_composites(const vfi_table_scratch_t *sc, uint32_t count, uint
         uint32_t both = p_len < s_len ? p_len : s_len, k = 1;
         for (; k < both; k++) {
             uint32_t down = top - k, up = p0 + k;
-            suf[down] = over(&iv[down], &suf[down + 1]);
-            back_suf[down] = over(&back_suf[down + 1], &iv[down]);
-            pre[up] = over(&pre[up - 1], &iv[up]);
-            back_pre[up] = over(&iv[up], &back_pre[up - 1]);
+            chain_down(iv, suf, back_suf, down);
+            chain_up(iv, pre, back_pre, up);
         }
-        for (uint32_t j = k; j < s_len; j++) {
-            uint32_t down = top - j;
-            suf[down] = over(&iv[down], &suf[down + 1]);
-            back_suf[down] = over(&back_suf[down + 1], &iv[down]);
-        }
-        for (uint32_t j = k; j < p_len; j++) {
-            uint32_t up = p0 + j;
-            pre[up] = over(&pre[up - 1], &iv[up]);
-            back_pre[up] = over(&iv[up], &back_pre[up - 1]);
-        }
+        for (uint32_t j = k; j < s_len; j++)
+            chain_down(iv, suf, back_suf, top - j);
+        for (uint32_t j = k; j < p_len; j++)
+            chain_up(iv, pre, back_pre, p0 + j);
     }
 }
 

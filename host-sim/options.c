@@ -190,6 +190,9 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
         } else if ((groups & SIM_OPT_JSON) && strcmp(a, "--json") == 0) {
             o->json = 1;
             takes = 0;
+        } else if ((groups & SIM_OPT_MATRIX) && strcmp(a, "--matrix") == 0) {
+            o->matrix = 1;
+            takes = 0;
         } else if ((groups & SIM_OPT_FRAMES) && strcmp(a, "--frames") == 0) {
             double n;
             if (!v || parse_doubles(v, &n, 1, 1) < 0 || n != (int)n || n < 1 || n > 100000)

@@ -22,6 +22,7 @@ typedef struct sim_opts {
     const char *diff;          /* --diff FILE */
     int json;                  /* --json */
     int frames;                /* --frames (bench) */
+    int matrix;                /* --matrix (bench) */
 } sim_opts_t;
 
 /* Option groups a command accepts. */
@@ -32,6 +33,7 @@ enum {
     SIM_OPT_DIFF = 8,    /* --diff */
     SIM_OPT_JSON = 16,   /* --json */
     SIM_OPT_FRAMES = 32, /* --frames */
+    SIM_OPT_MATRIX = 64, /* --matrix */
 };
 
 /* Parse argv (after the command name). Returns 0, 1 when --help was asked (usage printed), or 2 after printing

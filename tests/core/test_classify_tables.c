@@ -655,8 +655,9 @@ static void tables_8bit(void)
     }
 }
 
-/* The entries a sample between two 8-bit scalars can touch: exactly its nearest entries for nearest lookup; one
- * more on each side (clamped) for bilinear, which reads entries min(floor(x), N - 2) and the next. */
+/* The entries a sample between two 8-bit scalars can touch: exactly its nearest entries for nearest lookup; for
+ * bilinear, which reads entries i = min(floor(x), N - 2) and i + 1 with weights 1 - f and f, every entry read
+ * with a weight above zero. */
 static void scalar_entry_ranges(void)
 {
     const uint32_t sizes[] = {2, 3, 64, 255, 256, 257, 1000, 1024};
@@ -679,15 +680,21 @@ static void scalar_entry_ranges(void)
                     int64_t s_q32 = (int64_t)(v << 32) + q * (INT64_C(1) << 26);
                     if (s_q32 < 0 || s_q32 > (INT64_C(255) << 32))
                         continue;
-                    double x = (double)s_q32 / 4294967296.0 * (n - 1) / 255;
-                    uint32_t i = (uint32_t)floor(x) < n - 2 ? (uint32_t)floor(x) : n - 2;
+                    /* x = s (N - 1) / 255 exactly as a fraction: whole part and whether there is a remainder */
+                    unsigned __int128 num = (unsigned __int128)s_q32 * (n - 1), den = (unsigned __int128)255 << 32;
+                    uint32_t whole = (uint32_t)(num / den);
+                    bool remainder = num % den != 0;
+                    uint32_t i = whole < n - 2 ? whole : n - 2;
+                    bool reads_i = whole == i;                    /* weight 1 - f > 0: x < i + 1 */
+                    bool reads_next = remainder || whole > i;     /* weight f > 0: x > i */
+                    uint32_t lowest = reads_i ? i : i + 1, highest = reads_next ? i + 1 : i;
                     /* a cell whose range ends at v (q <= 0) or starts at v (q >= 0) holds s: cover its entries */
                     if (q <= 0)
-                        CHECK_MSG(cls.end_of_scalar[v] >= i + 2, "N %u scalar %llu: end %u, sample reads %u", n,
-                                  (unsigned long long)v, cls.end_of_scalar[v], i + 1);
+                        CHECK_MSG(cls.end_of_scalar[v] >= highest + 1, "N %u scalar %llu: end %u, sample reads %u", n,
+                                  (unsigned long long)v, cls.end_of_scalar[v], highest);
                     if (q >= 0)
-                        CHECK_MSG(cls.first_of_scalar[v] <= i, "N %u scalar %llu: first %u, sample reads %u", n,
-                                  (unsigned long long)v, cls.first_of_scalar[v], i);
+                        CHECK_MSG(cls.first_of_scalar[v] <= lowest, "N %u scalar %llu: first %u, sample reads %u", n,
+                                  (unsigned long long)v, cls.first_of_scalar[v], lowest);
                 }
                 CHECK(cls.end_of_scalar[v] <= n);
             }
