@@ -292,16 +292,16 @@ static void segment_preint1(const row_job_t *job, uint32_t pos_f, uint32_t pos_b
     const vfi_lookup_ctx_t *c = &job->lookup;
     const size_t n = c->n;
     if (job->bilinear) {
-        uint32_t i, fi, j, fj, e[3][4];
+        uint32_t i, fi, j, fj, w[4], e[4][4];
         vfi_split_position(c->n, pos_f, &i, &fi);
         vfi_split_position(c->n, pos_b, &j, &fj);
-        vfi_fetch(c, i * n + j, seg);
-        vfi_fetch(c, (i + 1) * n + j, e[0]);
-        vfi_fetch(c, i * n + j + 1, e[1]);
-        vfi_fetch(c, (i + 1) * n + j + 1, e[2]);
-        vfi_lerp(seg, e[0], fi);
-        vfi_lerp(e[1], e[2], fi);
-        vfi_lerp(seg, e[1], fj);
+        vfi_weights(fi, fj, w);
+        vfi_fetch(c, i * n + j, e[0]);
+        vfi_fetch(c, (i + 1) * n + j, e[1]);
+        vfi_fetch(c, i * n + j + 1, e[2]);
+        vfi_fetch(c, (i + 1) * n + j + 1, e[3]);
+        for (int k = 0; k < 4; k++) /* at most 32768 * 65536 in all */
+            seg[k] = (e[0][k] * w[0] + e[1][k] * w[1] + e[2][k] * w[2] + e[3][k] * w[3] + 0x8000u) >> 16;
     } else {
         vfi_fetch(c, pos_f * n + pos_b, seg);
     }

@@ -24,11 +24,26 @@ static inline void vfi_fetch(const vfi_lookup_ctx_t *c, size_t e, uint32_t out[4
     }
 }
 
-/* x = (1 - f) x + f y per channel, f in Q0.16 (up to 65536). */
+/* x = (1 - f) x + f y per channel, f in Q0.16 (up to 65536); values at most 1.0 (32768), so the sum of the two
+ * products is at most 2^31 and 32 bits hold it. */
 static inline void vfi_lerp(uint32_t x[4], const uint32_t y[4], uint32_t f)
 {
     for (int k = 0; k < 4; k++)
-        x[k] = (uint32_t)(((uint64_t)x[k] * (65536u - f) + (uint64_t)y[k] * f + 0x8000u) >> 16);
+        x[k] = (x[k] * (65536u - f) + y[k] * f + 0x8000u) >> 16;
+}
+
+/* The four bilinear weights of fractions fx, fy (Q0.16), summing to exactly 65536: w00 w10 w01 w11. */
+static inline void vfi_weights(uint32_t fx, uint32_t fy, uint32_t w[4])
+{
+    if (fx == 65536 || fy == 65536) { /* a clamped last entry: the products below would need 33 bits */
+        uint64_t w11 = ((uint64_t)fx * fy + 0x8000u) >> 16;
+        w[3] = (uint32_t)w11;
+    } else {
+        w[3] = (fx * fy + 0x8000u) >> 16;
+    }
+    w[1] = fx - w[3];
+    w[2] = fy - w[3];
+    w[0] = 65536u - fx - fy + w[3];
 }
 
 /* A bilinear table position (Q.16, from vfi_position_of_sample) as an entry below and a fraction to the next:

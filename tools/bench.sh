@@ -1,20 +1,25 @@
 #!/bin/sh
-# make bench: the frame-time protocol of Schulze et al. (90 frames, 2 degrees apart) on the shared volumes,
-# for both modes, and instructions per frame from callgrind (which a noisy machine does not change).
-# Timings are medians and means of one run on this machine; quote them with the machine they came from.
+# make bench: the frame-time protocol of Schulze et al. (90 frames, 2 degrees apart) as their Table 1 (every
+# pre-integration variant against point sampling), the table builders, and instructions per frame from
+# callgrind (which a noisy machine does not change). Timings are means and medians of one run on this
+# machine; quote them with the machine they came from.
 cd "$(dirname "$0")/.." || exit 2
 sim=${BUILD:-build}/volfix-sim
 data=${VOLFIX_DATA:-../shared/data}
 size=${SIZE:-512x512}
 if [ -d "$data" ]; then volumes="$data/engine.nhdr $data/brainsmall.nhdr"; else volumes="phantom:shepp-logan:128"; fi
 
-echo "== frame times ($size, preset ramp, 1 thread)"
+echo "== frame times, $size, preset ramp, 1 thread"
 for v in $volumes; do
-    for mode in point preint1; do
-        "$sim" bench "$v" --mode "$mode" --preset ramp --size "$size" || exit 1
-        echo
-    done
+    "$sim" bench "$v" --matrix --preset ramp --size "$size" || exit 1
+    echo
 done
+
+echo "== pre-integrated tables: incremental O(N^2) against the brute-force O(N^3) oracle"
+for n in 256 1024; do
+    "$sim" tables --preset sharp --size $n --repeat $([ $n = 256 ] && echo 9 || echo 1) || exit 1
+done
+echo
 
 if command -v valgrind >/dev/null; then
     echo "== instructions per frame (callgrind, vfp_render_frame inclusive, 2 frames averaged)"
