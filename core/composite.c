@@ -49,8 +49,10 @@ typedef struct row_job {
     uint32_t t;                        /* standard slice (order 0) or slab (preint1) */
     const vfi_classify_t *cls;
     vfi_lookup_ctx_t lookup;
-    bool plain;                        /* nearest lookup, 16-bit table, no lut: the fast path */
+    bool plain;                        /* nearest lookup, 16-bit table, no lut, full precision: the fast path */
     bool bilinear;
+    uint32_t sample_shift;             /* precision studies: samples rounded to 32 - shift fraction bits (0: exact) */
+    uint32_t inter_shift;              /* precision studies: accumulators rounded to multiples of 2^shift in Q1.15 */
     vfi_sample_t *front_buf, *back_buf;
     int32_t front_shift, back_shift;   /* buffer index = u - shift */
     uint16_t *next;
@@ -107,7 +109,9 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     job.row = l->row;
     job.lookup = r->lookup;
     job.bilinear = r->params.lookup == VF_LOOKUP_BILINEAR;
-    job.plain = !job.bilinear && job.lookup.q15 && !job.lookup.lut_f;
+    job.sample_shift = r->params.sample_bits ? 32 - r->params.sample_bits : 0;
+    job.inter_shift = 16 - r->params.intermediate_bits;
+    job.plain = !job.bilinear && job.lookup.q15 && !job.lookup.lut_f && !job.sample_shift && !job.inter_shift;
     const vfi_runs_t *runs = &r->runs[f->k_axis];
     slice_place_t place[2];
 
@@ -194,11 +198,31 @@ static inline uint64_t sample_q32(const uint8_t *p, uint32_t row, const slice_pl
     return (uint64_t)((int64_t)top * 65536 + (int64_t)(bottom - top) * (int64_t)sl->fy);
 }
 
-/* Where a sample goes in the table: its nearest entry, or (bilinear) its position in Q.16. */
+/* Where a sample goes in the table: its nearest entry, or (bilinear) its position in Q.16; for precision
+ * studies the sample is first rounded to fewer fraction bits. */
 static inline uint32_t table_position(const row_job_t *job, const uint8_t *p, const slice_place_t *sl)
 {
     uint64_t s = sample_q32(p, job->row, sl);
+    if (job->sample_shift)
+        s = ((s + (UINT64_C(1) << (job->sample_shift - 1))) >> job->sample_shift) << job->sample_shift;
     return job->bilinear ? vfi_position_of_sample(job->cls, s) : vfi_entry_of_sample(job->cls, s);
+}
+
+/* Composite a segment; for precision studies keep the accumulators on a coarser grid. */
+static inline bool composite_segment(const row_job_t *job, uint16_t *px, const uint32_t seg[4])
+{
+    if (!seg[3])
+        return false;
+    bool opaque = vfi_blend(px, seg);
+    if (job->inter_shift) {
+        const uint32_t half = 1u << (job->inter_shift - 1);
+        for (int c = 0; c < 4; c++) {
+            uint32_t v = ((px[c] + half) >> job->inter_shift) << job->inter_shift;
+            px[c] = (uint16_t)(v > VFI_ONE_Q15 ? VFI_ONE_Q15 : v);
+        }
+        opaque = px[3] >= VFI_OPAQUE_Q15;
+    }
+    return opaque;
 }
 
 /* The first open pixel at or after u; halves the path it walked, so that runs of opaque pixels cost
@@ -280,7 +304,7 @@ static void row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
         for (uint32_t u = next_open(job->next, (uint32_t)a); u < (uint32_t)b; u = next_open(job->next, u + 1)) {
             uint32_t seg[4];
             segment_order0(job, job->row_data + (u - (uint32_t)sl->cu), preclass, seg);
-            if (seg[3] && vfi_blend(job->pixels + (size_t)u * 4, seg))
+            if (composite_segment(job, job->pixels + (size_t)u * 4, seg))
                 job->next[u] = (uint16_t)(u + 1);
         }
     }
@@ -364,20 +388,15 @@ static void row_preint1(const row_job_t *job, run_merge_t *m)
              * Nearest positions are kept times N: the front entry's row in the 2D table. */
             vfi_sample_t front = job->front_buf[(int32_t)u - job->front_shift];
             uint32_t pos_f = (uint32_t)front, pos_b;
-            if (job->bilinear) {
-                if ((front >> 32) != front_slice)
-                    pos_f = vfi_position_of_sample(job->cls, sample_q32(job->row_data + (u - (uint32_t)fr->cu), job->row, fr));
-                pos_b = vfi_position_of_sample(job->cls, sample_q32(job->back_row_data + (u - (uint32_t)bk->cu), job->row, bk));
-                job->back_buf[(int32_t)u - job->back_shift] = back_tag | pos_b;
-            } else {
-                if ((front >> 32) != front_slice)
-                    pos_f = n * vfi_entry_of_sample(job->cls, sample_q32(job->row_data + (u - (uint32_t)fr->cu), job->row, fr));
-                pos_b = vfi_entry_of_sample(job->cls, sample_q32(job->back_row_data + (u - (uint32_t)bk->cu), job->row, bk));
-                job->back_buf[(int32_t)u - job->back_shift] = back_tag | (pos_b * n);
-            }
+            /* nearest positions are kept times N in the buffer (the front entry's row in the 2D table) */
+            const uint32_t scale = job->bilinear ? 1 : n;
+            if ((front >> 32) != front_slice)
+                pos_f = scale * table_position(job, job->row_data + (u - (uint32_t)fr->cu), fr);
+            pos_b = table_position(job, job->back_row_data + (u - (uint32_t)bk->cu), bk);
+            job->back_buf[(int32_t)u - job->back_shift] = back_tag | (pos_b * scale);
             uint32_t seg[4];
             segment_preint1(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg);
-            if (seg[3] && vfi_blend(job->pixels + (size_t)u * 4, seg))
+            if (composite_segment(job, job->pixels + (size_t)u * 4, seg))
                 job->next[u] = (uint16_t)(u + 1);
         }
     }

@@ -8,6 +8,7 @@
 static vf_status_t check_params(const vf_params_t *p);
 static vf_status_t check_volume(const vf_volume_t *v);
 static size_t intermediate_pixels(const uint32_t dims[3], uint32_t *max_w, uint32_t *max_ni);
+static size_t table_value_bytes(const vf_params_t *p);
 static size_t table_entries(const vf_params_t *p);
 static size_t table_bytes(const vf_params_t *p);
 static vf_status_t encode_runs(vf_renderer_t *r);
@@ -23,6 +24,9 @@ void vf_params_default(vf_params_t *p)
     p->lookup = VF_LOOKUP_NEAREST;
     p->correction = VF_CORRECTION_REBUILD;
     p->buffer = VF_BUFFER_SLICE;
+    p->sample_bits = 0;
+    p->intermediate_bits = 16;
+    p->warp_bits = 16;
     p->background[0] = p->background[1] = p->background[2] = 0;
 }
 
@@ -74,7 +78,7 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     s = vfi_classify_alloc(&r->cls, n, p->lookup, arena);
     if (s == VF_OK)
         s = vfi_table_scratch_alloc(&r->table_scratch, n, arena);
-    r->table = vfi_arena_alloc(arena, table_entries(p) * 4 * (p->table_bits / 8));
+    r->table = vfi_arena_alloc(arena, table_entries(p) * 4 * table_value_bytes(p));
     if (lut) {
         r->lut_f = vfi_arena_alloc(arena, sizeof(uint16_t) * VFI_LUT_KNOTS);
         r->lut_g = vfi_arena_alloc(arena, sizeof(uint32_t) * VFI_LUT_KNOTS);
@@ -203,19 +207,22 @@ const uint16_t *vf_render_intermediate(const vf_renderer_t *r)
 
 const uint16_t *vf_render_point_table(const vf_renderer_t *r)
 {
-    return r && r->tables_valid && r->params.table_bits == 16 && r->params.mode != VF_MODE_PREINT1 ? r->table : NULL;
+    return r && r->tables_valid && r->params.table_bits != 8 && r->params.mode != VF_MODE_PREINT1 ? r->table : NULL;
 }
 
 const uint16_t *vf_render_preint_table(const vf_renderer_t *r)
 {
-    return r && r->tables_valid && r->params.table_bits == 16 && r->params.mode == VF_MODE_PREINT1 ? r->table : NULL;
+    return r && r->tables_valid && r->params.table_bits != 8 && r->params.mode == VF_MODE_PREINT1 ? r->table : NULL;
 }
 
 static vf_status_t check_params(const vf_params_t *p)
 {
     if ((unsigned)p->mode >= VF_MODE_COUNT || (unsigned)p->lookup >= VF_LOOKUP_COUNT ||
         (unsigned)p->correction >= VF_CORRECTION_COUNT || (unsigned)p->buffer >= VF_BUFFER_COUNT ||
-        (p->table_bits != 8 && p->table_bits != 16))
+        (p->table_bits != 8 && p->table_bits != 10 && p->table_bits != 12 && p->table_bits != 16) ||
+        (p->sample_bits != 0 && (p->sample_bits < 4 || p->sample_bits > 16)) ||
+        (p->intermediate_bits != 8 && p->intermediate_bits != 12 && p->intermediate_bits != 16) ||
+        p->warp_bits < 4 || p->warp_bits > 16)
         return VF_ERR_ARG;
     if (p->table_size < VF_MIN_TABLE || p->table_size > VF_MAX_TABLE)
         return VF_ERR_ARG;
@@ -247,6 +254,12 @@ static vf_status_t check_volume(const vf_volume_t *v)
 }
 
 /* The point table (point, preclass) or the 2D table (preint1), the builders' scratch, the lut. */
+/* 8-bit tables are bytes; 10, 12 and 16 bits are kept in 16-bit words */
+static size_t table_value_bytes(const vf_params_t *p)
+{
+    return p->table_bits == 8 ? 1 : 2;
+}
+
 static size_t table_entries(const vf_params_t *p)
 {
     return p->mode == VF_MODE_PREINT1 ? (size_t)p->table_size * p->table_size : p->table_size;
@@ -254,7 +267,7 @@ static size_t table_entries(const vf_params_t *p)
 
 static size_t table_bytes(const vf_params_t *p)
 {
-    size_t bytes = vfi_table_scratch_bytes(p->table_size) + vfi_arena_block(table_entries(p) * 4 * (p->table_bits / 8));
+    size_t bytes = vfi_table_scratch_bytes(p->table_size) + vfi_arena_block(table_entries(p) * 4 * table_value_bytes(p));
     if (p->correction == VF_CORRECTION_LUT)
         bytes += vfi_arena_block(sizeof(uint16_t) * VFI_LUT_KNOTS) + vfi_arena_block(sizeof(uint32_t) * VFI_LUT_KNOTS);
     return bytes;
@@ -311,11 +324,12 @@ static void update_tables(vf_renderer_t *r)
     const uint32_t slab = r->factor.slab_q16;
     const bool lut = r->params.correction == VF_CORRECTION_LUT;
     const uint32_t table_slab = lut ? UINT32_C(65536) : slab;
-    const bool bits16 = r->params.table_bits == 16;
+    const bool bits16 = r->params.table_bits != 8; /* 10 and 12 bits are kept in 16-bit words */
     if (!r->tables_valid || r->tables_generation != r->tf_generation || r->tables_slab_q16 != table_slab) {
         vfi_table_out_t out;
         out.q15 = bits16 ? r->table : NULL;
         out.u8 = bits16 ? NULL : r->table;
+        out.grid_bits = r->params.table_bits == 10 || r->params.table_bits == 12 ? r->params.table_bits : 0;
         if (r->params.mode == VF_MODE_PREINT1)
             vfi_preint_table_incremental(&r->cls, table_slab, &r->table_scratch, out);
         else

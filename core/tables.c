@@ -234,9 +234,24 @@ static inline uint8_t q30_to_u8(uint32_t v)
     return (uint8_t)(q > 255 ? 255 : q);
 }
 
+/* round((2^B - 1) x) / (2^B - 1), back in Q1.15 */
+static inline uint16_t q30_to_grid(uint32_t v, uint32_t bits)
+{
+    uint64_t levels = (UINT64_C(1) << bits) - 1;
+    uint64_t q = ((uint64_t)v * levels + HALF_Q30) >> 30;
+    q = q > levels ? levels : q;
+    return (uint16_t)((q * VFI_ONE_Q15 + levels / 2) / levels);
+}
+
 static inline void store(vfi_table_out_t out, size_t entry, const vfi_seg_t *s)
 {
-    if (out.q15) {
+    if (out.q15 && out.grid_bits) {
+        uint16_t *e = out.q15 + entry * 4;
+        e[0] = q30_to_grid(s->r, out.grid_bits);
+        e[1] = q30_to_grid(s->g, out.grid_bits);
+        e[2] = q30_to_grid(s->b, out.grid_bits);
+        e[3] = q30_to_grid(s->a, out.grid_bits);
+    } else if (out.q15) {
         uint16_t *e = out.q15 + entry * 4;
         e[0] = q30_to_q15(s->r);
         e[1] = q30_to_q15(s->g);
@@ -292,7 +307,7 @@ static vf_status_t build(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, int w
     if (s == VF_OK)
         s = vfi_classify(&cls, tf);
     if (s == VF_OK) {
-        vfi_table_out_t to = {out, NULL};
+        vfi_table_out_t to = {out, NULL, 0};
         if (which == 0)
             vfi_point_table(&cls, slab_q16, to);
         else if (which == 1 + VF_BUILDER_INCREMENTAL)

@@ -10,10 +10,12 @@
 
 #define VFI_ONE_Q15 32768u
 
-/* Where a builder writes: exactly one of the two is set. */
+/* Where a builder writes: exactly one of q15 and u8 is set. grid_bits (10 or 12, else 0) puts Q1.15 values on
+ * the grid of round((2^B - 1) x) / (2^B - 1), for precision studies. */
 typedef struct vfi_table_out {
     uint16_t *q15;
     uint8_t *u8;
+    uint32_t grid_bits;
 } vfi_table_out_t;
 
 /* What compositing reads: one table (point or 2D) in one of the two formats, and the lut correction. */

@@ -123,11 +123,17 @@ typedef enum vf_buffer {
 typedef struct vf_params {
     vf_mode_t mode;             /* preint1 */
     uint32_t table_size;        /* N table entries over the scalar domain, VF_MIN_TABLE..VF_MAX_TABLE (256) */
-    uint32_t table_bits;        /* 16 (Q1.15 entries) or 8 (8-bit RGBA entries, half the memory) */
+    uint32_t table_bits;        /* 16 (Q1.15 entries), 8 (8-bit entries, half the memory), or 10 or 12 (values
+                                 * on that grid, stored in 16 bits: for precision studies) */
     vf_lookup_t lookup;         /* nearest */
     vf_correction_t correction; /* rebuild */
     vf_buffer_t buffer;         /* slice */
     uint16_t background[3];     /* unorm16 RGB behind the volume (black) */
+    /* Precision of the core's own arithmetic, for studies of how many bits each stage needs (docs/algorithm.md,
+     * section 6). The defaults are the full precision; the double reference ignores these. */
+    uint32_t sample_bits;       /* 0: samples exact; 4..16: rounded to that many fraction bits before lookup */
+    uint32_t intermediate_bits; /* 16: Q1.15 accumulation; 8 or 12: rounded to that many bits after each slab */
+    uint32_t warp_bits;         /* 16: Q0.16 warp weights; 4..15: fractions rounded to that many bits */
 } vf_params_t;
 
 void vf_params_default(vf_params_t *params);

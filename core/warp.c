@@ -14,6 +14,7 @@
 
 typedef struct warp_row {
     const vf_renderer_t *r;
+    uint32_t fraction_mask; /* the warp's fraction bits kept (precision studies: fewer than 16) */
     uint32_t bg[3];         /* background, Q1.15 */
     bool have_bg;
     vf_format_t format;
@@ -39,6 +40,7 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
     /* The background shows through what the volume leaves: out = C + (1 - A) bg. */
     warp_row_t w;
     w.r = r;
+    w.fraction_mask = (0xFFFFu >> (16 - r->params.warp_bits)) << (16 - r->params.warp_bits);
     w.format = image->format;
     w.bpp = bpp;
     w.have_bg = false;
@@ -79,7 +81,7 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
         int64_t u = u_row + inner0 * f->du_dx_q32, v = v_row + inner0 * f->dv_dx_q32;
         for (int64_t x = inner0; x < inner1; x++, u += f->du_dx_q32, v += f->dv_dx_q32) {
             /* all four neighbours inside: u, v >= 0, so the shifts are floors */
-            uint32_t fx = (uint32_t)(u >> 16) & 0xFFFFu, fy = (uint32_t)(v >> 16) & 0xFFFFu;
+            uint32_t fx = (uint32_t)(u >> 16) & w.fraction_mask, fy = (uint32_t)(v >> 16) & w.fraction_mask;
             uint32_t w11 = (fx * fy + 0x8000u) >> 16;
             uint32_t w00 = 65536u - fx - fy + w11, w10 = fx - w11, w01 = fy - w11;
             const uint16_t *p00 = img + ((size_t)(v >> 32) * (size_t)iw + (size_t)(u >> 32)) * 4;
@@ -139,7 +141,7 @@ static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, uns
     int64_t us = u_q32 + ONE_Q32, vs = v_q32 + ONE_Q32;
     if (us > 0 && vs > 0 && us < (iw + 1) * ONE_Q32 && vs < (ih + 1) * ONE_Q32) {
         int32_t iu = (int32_t)(us >> 32) - 1, iv = (int32_t)(vs >> 32) - 1;
-        uint32_t fx = (uint32_t)(us >> 16) & 0xFFFFu, fy = (uint32_t)(vs >> 16) & 0xFFFFu;
+        uint32_t fx = (uint32_t)(us >> 16) & w->fraction_mask, fy = (uint32_t)(vs >> 16) & w->fraction_mask;
         uint32_t w11 = (fx * fy + 0x8000u) >> 16;
         const uint32_t weight[4] = {65536u - fx - fy + w11, fx - w11, fy - w11, w11};
         const int32_t du[4] = {0, 1, 0, 1}, dv[4] = {0, 0, 1, 1};

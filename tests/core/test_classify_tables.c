@@ -44,7 +44,7 @@ static uint16_t table1d[1024 * 4];
 
 static vfi_table_out_t q15_out(uint16_t *table)
 {
-    vfi_table_out_t out = {table, NULL};
+    vfi_table_out_t out = {table, NULL, 0};
     return out;
 }
 
@@ -627,7 +627,7 @@ static void tables_8bit(void)
             spec_classify(&tf, n);
             uint32_t slab_q16 = 65536 + (uint32_t)t * 9000;
             double d = slab_q16 / 65536.0;
-            vfi_table_out_t u8 = {NULL, table2d_u8};
+            vfi_table_out_t u8 = {NULL, table2d_u8, 0};
             vfi_preint_table_incremental(&fx.cls, slab_q16, &fx.scratch, u8);
             vfi_preint_table_incremental(&fx.cls, slab_q16, &fx.scratch, q15_out(table2d));
             for (uint32_t f = 0; f < n; f++)
@@ -644,7 +644,7 @@ static void tables_8bit(void)
                         CHECK(abs((int)table2d_u8[at] - (int)lround(table2d[at] * 255 / 32768.0)) <= 1);
                     }
                 }
-            vfi_point_table(&fx.cls, slab_q16, (vfi_table_out_t){NULL, table2d_u8});
+            vfi_point_table(&fx.cls, slab_q16, (vfi_table_out_t){NULL, table2d_u8, 0});
             for (uint32_t i = 0; i < n; i++) {
                 double e[4];
                 spec_point(i, d, e);

@@ -134,16 +134,16 @@ static void segment1(const vf_renderer_t *r, const sample_t *front, const sample
     const vfi_lookup_ctx_t *c = &r->lookup;
     const size_t n = c->n;
     if (r->params.lookup == VF_LOOKUP_BILINEAR) {
-        uint32_t i, fi, j, fj, e[3][4];
+        uint32_t i, fi, j, fj, w[4], e[4][4];
         vfi_split_position(c->n, vfi_position_of_sample(&r->cls, front->s_q32), &i, &fi);
         vfi_split_position(c->n, vfi_position_of_sample(&r->cls, back->s_q32), &j, &fj);
-        vfi_fetch(c, i * n + j, seg);
-        vfi_fetch(c, (i + 1) * n + j, e[0]);
-        vfi_fetch(c, i * n + j + 1, e[1]);
-        vfi_fetch(c, (i + 1) * n + j + 1, e[2]);
-        vfi_lerp(seg, e[0], fi);
-        vfi_lerp(e[1], e[2], fi);
-        vfi_lerp(seg, e[1], fj);
+        vfi_weights(fi, fj, w); /* one set of four weights, as the core */
+        vfi_fetch(c, i * n + j, e[0]);
+        vfi_fetch(c, (i + 1) * n + j, e[1]);
+        vfi_fetch(c, i * n + j + 1, e[2]);
+        vfi_fetch(c, (i + 1) * n + j + 1, e[3]);
+        for (int k = 0; k < 4; k++)
+            seg[k] = (e[0][k] * w[0] + e[1][k] * w[1] + e[2][k] * w[2] + e[3][k] * w[3] + 0x8000u) >> 16;
     } else {
         vfi_fetch(c, vfi_entry_of_sample(&r->cls, front->s_q32) * n + vfi_entry_of_sample(&r->cls, back->s_q32), seg);
     }
@@ -346,7 +346,7 @@ static void option_arguments(void)
     CHECK_EQ(p.buffer, VF_BUFFER_SLICE);
     size_t bytes;
     vf_params_t q = p;
-    const uint32_t bad_bits[] = {0, 1, 4, 7, 9, 12, 15, 17, 32};
+    const uint32_t bad_bits[] = {0, 1, 4, 7, 9, 11, 15, 17, 32}; /* 8, 10, 12 and 16 are valid */
     for (size_t n = 0; n < sizeof bad_bits / sizeof bad_bits[0]; n++) {
         q.table_bits = bad_bits[n];
         CHECK_EQ(vf_renderer_bytes(&q, &vol, &bytes), VF_ERR_ARG);
