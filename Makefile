@@ -34,7 +34,7 @@ PORT_LIBS  := -lz -lpng -lpthread -lm
 
 CORE_SRC := $(wildcard core/*.c)
 PORT_SRC := $(wildcard port/*.c)
-SIM_SRC  := $(wildcard host-sim/*.c) $(wildcard host-sim/ref/*.c)
+SIM_SRC  := $(wildcard host-sim/*.c) $(wildcard host-sim/ref/*.c) $(wildcard host-sim/truth/*.c)
 SIM_MAIN := host-sim/main.c
 
 CORE_OBJ := $(CORE_SRC:%.c=$(BUILD)/%.o)
@@ -60,7 +60,7 @@ $(BUILD)/port/%.o: port/%.c $(wildcard core/volfix.h core/vf_config.h port/*.h) 
 	$(CC) $(HOST_CFLAGS) -c $< -o $@
 
 $(BUILD)/host-sim/%.o: host-sim/%.c $(wildcard core/volfix.h port/*.h host-sim/*.h host-sim/ref/*.h) \
-                       | $(BUILD)/host-sim/ref
+                       $(wildcard host-sim/truth/*.h) | $(BUILD)/host-sim/ref $(BUILD)/host-sim/truth
 	$(CC) $(HOST_CFLAGS) -c $< -o $@
 
 $(LIBVOLFIX): $(CORE_OBJ)
@@ -82,8 +82,8 @@ $(BUILD)/tests/%: tests/%.c $(TEST_LIB) $(LIBSIM) $(LIBPORT) $(LIBVOLFIX) tests/
                   $(BUILD)/tests/port $(BUILD)/tests/host-sim
 	$(CC) $(HOST_CFLAGS) -Itests -o $@ $< $(TEST_LIB) $(LIBSIM) $(LIBPORT) $(LIBVOLFIX) $(LDFLAGS) $(PORT_LIBS)
 
-$(BUILD)/core $(BUILD)/port $(BUILD)/host-sim/ref $(BUILD)/tests $(BUILD)/tests/core $(BUILD)/tests/port \
-$(BUILD)/tests/host-sim:
+$(BUILD)/core $(BUILD)/port $(BUILD)/host-sim/ref $(BUILD)/host-sim/truth $(BUILD)/tests $(BUILD)/tests/core \
+$(BUILD)/tests/port $(BUILD)/tests/host-sim:
 	mkdir -p $@
 
 deps:

@@ -1,4 +1,5 @@
-/* cmd_compare.c: volfix-sim compare: the core's image against the double reference's, pixel by pixel. */
+/* cmd_compare.c: volfix-sim compare: the core's image against the double reference's (or the ground truth's),
+ * pixel by pixel. */
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -13,6 +14,9 @@ static const char usage_head[] =
     "(same inputs, same table size, same lookups) and report how far apart they are, in 8-bit levels per\n"
     "channel: PSNR, largest and mean absolute difference, and the share of pixels off by more than 1.\n"
     "RGB565 images are compared after expanding both to 8 bits.\n\n"
+    "  --against W          reference (default: the same algorithm in double, so the difference is the\n"
+    "                       fixed-point error) or truth (the ground-truth ray caster: the algorithm's own error\n"
+    "                       as well)\n"
     "  -o FILE              also write the core's image as a PNG\n"
     "  --diff FILE          write the difference (largest channel, times 32) as a PNG\n"
     "  --json               print one JSON object: psnr_db, max_abs, mean_abs, over1_pct, and per channel\n";
@@ -22,7 +26,8 @@ int sim_cmd_compare(int argc, char **argv)
     char usage[4096], err[VFP_ERR_LEN], about[512];
     snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_DIFF | SIM_OPT_JSON, usage);
+    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_DIFF | SIM_OPT_JSON | SIM_OPT_AGAINST,
+                           usage);
     if (status)
         return status == 1 ? 0 : 2;
     sim_scene_t scene;
@@ -37,7 +42,8 @@ int sim_cmd_compare(int argc, char **argv)
         sim_scene_free(&scene);
         return 2;
     }
-    if (sim_render_reference(&scene, &factor, &ref, err, sizeof err)) {
+    if (o.truth ? sim_render_truth(&scene, &ref, err, sizeof err)
+                : sim_render_reference(&scene, &factor, &ref, err, sizeof err)) {
         fprintf(stderr, "volfix-sim: %s\n", err);
         sim_image_free(&core);
         sim_scene_free(&scene);
@@ -56,12 +62,12 @@ int sim_cmd_compare(int argc, char **argv)
     sim_diff(a, b, pixels, &d);
     sim_scene_describe(&scene, about, sizeof about);
     if (o.json) {
-        printf("{\"scene\": \"%s\", \"psnr_db\": %.3f, \"max_abs\": %d, \"mean_abs\": %.5f, \"over1_pct\": %.5f, "
-               "\"max_abs_rgb\": [%d, %d, %d], \"mean_abs_rgb\": [%.5f, %.5f, %.5f]}\n",
-               about, d.psnr_db, d.max_abs[3], d.mean_abs[3], d.over1_pct, d.max_abs[0], d.max_abs[1], d.max_abs[2],
-               d.mean_abs[0], d.mean_abs[1], d.mean_abs[2]);
+        printf("{\"scene\": \"%s\", \"against\": \"%s\", \"psnr_db\": %.3f, \"max_abs\": %d, \"mean_abs\": %.5f, "
+               "\"over1_pct\": %.5f, \"max_abs_rgb\": [%d, %d, %d], \"mean_abs_rgb\": [%.5f, %.5f, %.5f]}\n",
+               about, o.truth ? "truth" : "reference", d.psnr_db, d.max_abs[3], d.mean_abs[3], d.over1_pct,
+               d.max_abs[0], d.max_abs[1], d.max_abs[2], d.mean_abs[0], d.mean_abs[1], d.mean_abs[2]);
     } else {
-        printf("%s: core against the double reference\n", about);
+        printf("%s: core against the %s\n", about, o.truth ? "ground truth" : "double reference");
         printf("         red    green   blue    all\n");
         printf("max      %-7d %-7d %-7d %d\n", d.max_abs[0], d.max_abs[1], d.max_abs[2], d.max_abs[3]);
         printf("mean     %-7.4f %-7.4f %-7.4f %.4f\n", d.mean_abs[0], d.mean_abs[1], d.mean_abs[2], d.mean_abs[3]);

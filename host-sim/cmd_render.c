@@ -1,4 +1,4 @@
-/* cmd_render.c: volfix-sim render: one image, with the fixed-point core or the double reference. */
+/* cmd_render.c: volfix-sim render: one image, with the fixed-point core, the double reference or the truth. */
 #include <stdio.h>
 
 #include "commands.h"
@@ -8,16 +8,18 @@
 static const char usage_head[] =
     "usage: volfix-sim render VOLUME [options] -o OUT.png\n"
     "Render one image of VOLUME with the fixed-point core (or, with --reference, with the double-precision\n"
-    "reference of the same algorithm) and write it as PNG.\n\n"
+    "reference of the same algorithm, or with --truth, with the ground-truth ray caster) and write it as PNG.\n\n"
     "  -o FILE              the PNG to write (required)\n"
-    "  --reference          use the double-precision reference renderer\n";
+    "  --reference          use the double-precision reference renderer\n"
+    "  --truth              use the ground-truth ray caster (trilinear, continuous transfer function, exact\n"
+    "                       integration; --mode and the table options do not apply)\n";
 
 int sim_cmd_render(int argc, char **argv)
 {
     char usage[4096], err[VFP_ERR_LEN], about[512];
     snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_REF, usage);
+    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_REF | SIM_OPT_TRUTH, usage);
     if (status)
         return status == 1 ? 0 : 2;
     if (!o.out) {
@@ -31,6 +33,7 @@ int sim_cmd_render(int argc, char **argv)
     }
     vf_image_t img;
     status = o.reference ? sim_render_reference(&scene, NULL, &img, err, sizeof err)
+             : o.truth   ? sim_render_truth(&scene, &img, err, sizeof err)
                          : sim_render_core(&scene, &img, NULL, err, sizeof err);
     if (status == 0) {
         status = vfp_png_write(o.out, &img, err, sizeof err);
@@ -40,7 +43,7 @@ int sim_cmd_render(int argc, char **argv)
         fprintf(stderr, "volfix-sim: %s\n", err);
     } else {
         sim_scene_describe(&scene, about, sizeof about);
-        printf("%s: %s%s\n", o.out, about, o.reference ? " (reference)" : "");
+        printf("%s: %s%s\n", o.out, about, o.reference ? " (reference)" : o.truth ? " (ground truth)" : "");
     }
     sim_scene_free(&scene);
     return status ? 2 : 0;

@@ -26,7 +26,7 @@ const char sim_scene_help[] =
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]\n"
     "                       for raw voxel files (--spacing also overrides a file's own)\n"
     "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N with NAME marschner-lobb,\n"
-    "shepp-logan or sphere.\n";
+    "shepp-logan, sphere or cube.\n";
 
 static int bad(const char *option, const char *value, const char *expected)
 {
@@ -185,6 +185,23 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
         } else if ((groups & SIM_OPT_REF) && strcmp(a, "--reference") == 0) {
             o->reference = 1;
             takes = 0;
+        } else if ((groups & SIM_OPT_TRUTH) && strcmp(a, "--truth") == 0) {
+            o->truth = 1;
+            takes = 0;
+        } else if ((groups & SIM_OPT_AGAINST) && strcmp(a, "--against") == 0) {
+            if (v && strcmp(v, "truth") == 0)
+                o->truth = 1;
+            else if (v && strcmp(v, "reference") == 0)
+                o->truth = 0;
+            else
+                return bad(a, v, "reference or truth");
+        } else if ((groups & SIM_OPT_PIXEL) && strcmp(a, "--pixel") == 0) {
+            double xy[3];
+            if (!v || parse_doubles(v, xy, 2, 3) != 2)
+                return bad(a, v, "X,Y, a final-image position in pixels");
+            o->pixel[0] = xy[0];
+            o->pixel[1] = xy[1];
+            o->have_pixel = 1;
         } else if ((groups & SIM_OPT_DIFF) && strcmp(a, "--diff") == 0 && v) {
             o->diff = v;
         } else if ((groups & SIM_OPT_JSON) && strcmp(a, "--json") == 0) {
@@ -209,6 +226,10 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
     }
     if ((groups & SIM_OPT_SCENE) && !o->volume) {
         fprintf(stderr, "volfix-sim: no volume given (see --help)\n");
+        return 2;
+    }
+    if (o->reference && o->truth) {
+        fprintf(stderr, "volfix-sim: give --reference or --truth, not both\n");
         return 2;
     }
     if (o->preset && o->tf_file) {

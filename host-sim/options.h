@@ -18,6 +18,9 @@ typedef struct sim_opts {
     vf_format_t format;        /* --format */
     int threads;               /* --threads */
     int reference;             /* --reference: render with the double reference */
+    int truth;                 /* --truth (render), --against truth (compare): the ground-truth ray caster */
+    int have_pixel;            /* --pixel X,Y given */
+    double pixel[2];           /* --pixel X,Y: a final-image position */
     const char *out;           /* -o FILE */
     const char *diff;          /* --diff FILE */
     int json;                  /* --json */
@@ -34,6 +37,9 @@ enum {
     SIM_OPT_JSON = 16,   /* --json */
     SIM_OPT_FRAMES = 32, /* --frames */
     SIM_OPT_MATRIX = 64, /* --matrix */
+    SIM_OPT_TRUTH = 128,  /* --truth */
+    SIM_OPT_AGAINST = 256, /* --against reference|truth */
+    SIM_OPT_PIXEL = 512,  /* --pixel X,Y */
 };
 
 /* Parse argv (after the command name). Returns 0, 1 when --help was asked (usage printed), or 2 after printing

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "ref/ref.h"
+#include "truth/truth.h"
 
 int32_t sim_bau(double degrees)
 {
@@ -89,41 +89,80 @@ int sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, 
     return status;
 }
 
-/* The reference gets the same inputs the core gets: the spacing, view and transfer function as quantised
- * for the core, and it windows the raw voxels itself. */
-int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, vf_image_t *img, char *err,
-                         size_t errlen)
+/* The reference and the truth get the same inputs the core gets: the spacing, view and transfer function as
+ * quantised for the core, and they window the raw voxels themselves. */
+int sim_ref_inputs(const sim_scene_t *s, sim_ref_inputs_t *in)
 {
     const vf_volume_t *cv = &s->vol.core;
     int dims[3] = {(int)cv->dims[0], (int)cv->dims[1], (int)cv->dims[2]};
-    size_t voxels = (size_t)dims[0] * dims[1] * dims[2];
-    uint8_t *scalars = malloc(voxels);
+    in->scalars = malloc((size_t)dims[0] * dims[1] * dims[2]);
+    if (!in->scalars)
+        return 2;
+    ref_window(cv->voxels, (int)cv->type, dims, s->window.lo, s->window.hi, in->scalars);
+    in->vol = (ref_volume_t){{dims[0], dims[1], dims[2]},
+                             {cv->spacing_q16[0] / 65536.0, cv->spacing_q16[1] / 65536.0, cv->spacing_q16[2] / 65536.0},
+                             in->scalars};
+    for (uint32_t i = 0; i < s->npoints; i++)
+        in->tf[i] = (ref_tf_point_t){s->points[i].scalar_q8 / 256.0, s->points[i].r / 65535.0,
+                                     s->points[i].g / 65535.0, s->points[i].b / 65535.0, s->points[i].a / 65535.0};
+    in->npoints = (int)s->npoints;
+    in->view = (ref_view_t){s->view.azimuth, s->view.elevation, s->view.roll, s->view.zoom_q16 / 65536.0};
+    for (int c = 0; c < 3; c++)
+        in->background[c] = s->params.background[c] / 65535.0;
+    return 0;
+}
+
+void sim_ref_inputs_free(sim_ref_inputs_t *in)
+{
+    free(in->scalars);
+    in->scalars = NULL;
+}
+
+/* Colours in [0, 1] rounded into the output format as the core stores them. */
+static void rgb_to_image(const sim_scene_t *s, const double *rgb, vf_image_t *img)
+{
+    for (uint32_t y = 0; y < s->height; y++)
+        for (uint32_t x = 0; x < s->width; x++) {
+            const double *c = rgb + ((size_t)y * s->width + x) * 3;
+            uint8_t *p = (uint8_t *)img->pixels + (size_t)y * img->stride + (size_t)x * vf_format_bytes(s->format);
+            long q[3];
+            for (int n = 0; n < 3; n++) {
+                double v = c[n] < 0 ? 0 : c[n] > 1 ? 1 : c[n];
+                q[n] = lround(v * (s->format == VF_FORMAT_RGB565 ? (n == 1 ? 63 : 31) : 255));
+            }
+            if (s->format == VF_FORMAT_RGB888) {
+                p[0] = (uint8_t)q[0], p[1] = (uint8_t)q[1], p[2] = (uint8_t)q[2];
+            } else if (s->format == VF_FORMAT_RGB565) {
+                unsigned word = (unsigned)(q[0] << 11 | q[1] << 5 | q[2]);
+                p[0] = (uint8_t)(word & 0xFF), p[1] = (uint8_t)(word >> 8);
+            } else {
+                p[0] = (uint8_t)q[2], p[1] = (uint8_t)q[1], p[2] = (uint8_t)q[0], p[3] = 0xFF;
+            }
+        }
+}
+
+int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, vf_image_t *img, char *err,
+                         size_t errlen)
+{
+    sim_ref_inputs_t in;
+    in.scalars = NULL;
     double *rgb = malloc(sizeof(double) * 3 * s->width * s->height);
-    ref_tf_point_t tf[VF_MAX_TF_POINTS];
-    if (!scalars || !rgb || sim_image_alloc(img, s->width, s->height, s->format)) {
-        free(scalars);
+    if (!rgb || sim_ref_inputs(s, &in) || sim_image_alloc(img, s->width, s->height, s->format)) {
         free(rgb);
+        sim_ref_inputs_free(&in);
         snprintf(err, errlen, "out of memory for the reference");
         return 2;
     }
-    ref_window(cv->voxels, (int)cv->type, dims, s->window.lo, s->window.hi, scalars);
-    ref_volume_t vol = {{dims[0], dims[1], dims[2]},
-                        {cv->spacing_q16[0] / 65536.0, cv->spacing_q16[1] / 65536.0, cv->spacing_q16[2] / 65536.0},
-                        scalars};
-    for (uint32_t i = 0; i < s->npoints; i++)
-        tf[i] = (ref_tf_point_t){s->points[i].scalar_q8 / 256.0, s->points[i].r / 65535.0,
-                                 s->points[i].g / 65535.0, s->points[i].b / 65535.0, s->points[i].a / 65535.0};
     ref_params_t params = {0};
     params.mode = s->params.mode == VF_MODE_POINT ? REF_MODE_POINT
                   : s->params.mode == VF_MODE_PRECLASS ? REF_MODE_PRECLASS
                                                        : REF_MODE_PREINT1;
     params.table_size = (int)s->params.table_size;
     for (int c = 0; c < 3; c++)
-        params.background[c] = s->params.background[c] / 65535.0;
+        params.background[c] = in.background[c];
     params.lookup = s->params.lookup == VF_LOOKUP_BILINEAR ? REF_LOOKUP_BILINEAR : REF_LOOKUP_NEAREST;
     params.table_bits = (int)s->params.table_bits;
     params.correction = s->params.correction == VF_CORRECTION_LUT ? REF_CORRECTION_LUT : REF_CORRECTION_REBUILD;
-    ref_view_t view = {s->view.azimuth, s->view.elevation, s->view.roll, s->view.zoom_q16 / 65536.0};
     int32_t *offsets = NULL;
     if (core_factor) {
         offsets = malloc(sizeof(int32_t) * 2 * core_factor->nk);
@@ -135,28 +174,11 @@ int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, v
         params.slice_k_axis = core_factor->k_axis;
         params.slice_k_flip = core_factor->k_flip;
     }
-    int status = ref_render(&vol, tf, (int)s->npoints, &params, &view, (int)s->width, (int)s->height, rgb, NULL);
+    int status = ref_render(&in.vol, in.tf, in.npoints, &params, &in.view, (int)s->width, (int)s->height, rgb,
+                            NULL);
     free(offsets);
     if (status == 0) {
-        /* the reference's colours, rounded into the output format as the core stores them */
-        for (uint32_t y = 0; y < s->height; y++)
-            for (uint32_t x = 0; x < s->width; x++) {
-                const double *c = rgb + ((size_t)y * s->width + x) * 3;
-                uint8_t *p = (uint8_t *)img->pixels + (size_t)y * img->stride + (size_t)x * vf_format_bytes(s->format);
-                long q[3];
-                for (int n = 0; n < 3; n++) {
-                    double v = c[n] < 0 ? 0 : c[n] > 1 ? 1 : c[n];
-                    q[n] = lround(v * (s->format == VF_FORMAT_RGB565 ? (n == 1 ? 63 : 31) : 255));
-                }
-                if (s->format == VF_FORMAT_RGB888) {
-                    p[0] = (uint8_t)q[0], p[1] = (uint8_t)q[1], p[2] = (uint8_t)q[2];
-                } else if (s->format == VF_FORMAT_RGB565) {
-                    unsigned word = (unsigned)(q[0] << 11 | q[1] << 5 | q[2]);
-                    p[0] = (uint8_t)(word & 0xFF), p[1] = (uint8_t)(word >> 8);
-                } else {
-                    p[0] = (uint8_t)q[2], p[1] = (uint8_t)q[1], p[2] = (uint8_t)q[0], p[3] = 0xFF;
-                }
-            }
+        rgb_to_image(s, rgb, img);
     } else {
         snprintf(err, errlen, status == -2 ? "the core's factorisation disagrees with the reference's (principal axis, "
                                              "flip or a slice offset more than 2^-16 apart)"
@@ -164,7 +186,31 @@ int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, v
                  status);
         sim_image_free(img);
     }
-    free(scalars);
+    sim_ref_inputs_free(&in);
+    free(rgb);
+    return status ? 2 : 0;
+}
+
+int sim_render_truth(const sim_scene_t *s, vf_image_t *img, char *err, size_t errlen)
+{
+    sim_ref_inputs_t in;
+    in.scalars = NULL;
+    double *rgb = malloc(sizeof(double) * 3 * s->width * s->height);
+    if (!rgb || sim_ref_inputs(s, &in) || sim_image_alloc(img, s->width, s->height, s->format)) {
+        free(rgb);
+        sim_ref_inputs_free(&in);
+        snprintf(err, errlen, "out of memory for the ground truth");
+        return 2;
+    }
+    int status = truth_render(&in.vol, in.tf, in.npoints, in.background, &in.view, (int)s->width,
+                              (int)s->height, s->threads, rgb);
+    if (status == 0) {
+        rgb_to_image(s, rgb, img);
+    } else {
+        snprintf(err, errlen, "the ground-truth ray caster failed (status %d)", status);
+        sim_image_free(img);
+    }
+    sim_ref_inputs_free(&in);
     free(rgb);
     return status ? 2 : 0;
 }

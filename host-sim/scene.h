@@ -1,11 +1,13 @@
 /*
  * scene.h: one scene (volume, window, transfer function, parameters, view, output size and format), rendered
- * by the fixed-point core or by the double-precision reference from the same inputs.
+ * by the fixed-point core, by the double-precision reference or by the ground-truth ray caster from the same
+ * inputs.
  */
 #ifndef SIM_SCENE_H
 #define SIM_SCENE_H
 
 #include "options.h"
+#include "ref/ref.h"
 #include "render_mt.h"
 #include "tf.h"
 #include "volume.h"
@@ -44,6 +46,26 @@ int sim_render_core(const sim_scene_t *scene, vf_image_t *image, vf_factor_t *fa
  * reference works alone. Returns 0, or 2 with err (also when the factorisations disagree). */
 int sim_render_reference(const sim_scene_t *scene, const vf_factor_t *core_factor, vf_image_t *image, char *err,
                          size_t errlen);
+
+/* The scene as the reference and the truth take it: the windowed 8-bit volume, the transfer-function points,
+ * view and background as quantised for the core. Returns 0, or 2 when out of memory; free the scalars with
+ * sim_ref_inputs_free. */
+typedef struct sim_ref_inputs {
+    ref_volume_t vol;
+    uint8_t *scalars;
+    ref_tf_point_t tf[VF_MAX_TF_POINTS];
+    int npoints;
+    ref_view_t view;
+    double background[3];
+} sim_ref_inputs_t;
+
+int sim_ref_inputs(const sim_scene_t *scene, sim_ref_inputs_t *in);
+void sim_ref_inputs_free(sim_ref_inputs_t *in);
+
+/* Render with the ground-truth ray caster (host-sim/truth) from the inputs the reference gets: the windowed
+ * volume, the quantised transfer-function points, view, size and background; threads from the scene. The mode
+ * and table options do not apply. Returns 0, or 2 with err. */
+int sim_render_truth(const sim_scene_t *scene, vf_image_t *image, char *err, size_t errlen);
 
 /* "engine.nhdr preint1 512x512 view 30,20 ramp window 0,255": what a line of output is about. */
 void sim_scene_describe(const sim_scene_t *scene, char *text, size_t len);

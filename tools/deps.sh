@@ -5,7 +5,7 @@
 set -u
 for_what=${1:-run}
 
-need="gcc make pkg-config zlib1g-dev libpng-dev"
+need="gcc make pkg-config zlib1g-dev libpng-dev gnuplot-nox"
 case "$for_what" in
   test) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf valgrind" ;;
 esac

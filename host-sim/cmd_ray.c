@@ -1,0 +1,190 @@
+/*
+ * cmd_ray.c: volfix-sim ray: El Hajjar et al. 2008's study of one ray (their Figures 1-5): the trilinear signal
+ * along the ray through one final pixel, its order 0, 1 and 2 reconstructions from shear-warp's samples at
+ * spacing 1 and 2 slices, and the error xi of each. Writes CSVs, a gnuplot script and its picture.
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "commands.h"
+#include "scene.h"
+#include "truth/truth.h"
+
+#define PER_VOXEL 64 /* signal points per slice in ray.csv */
+
+static const char usage_head[] =
+    "usage: volfix-sim ray VOLUME [options] [--pixel X,Y] -o DIR\n"
+    "Follow the ray through final pixel (X, Y) of the view and compare the trilinear signal along it with what\n"
+    "shear-warp reconstructs from its samples on the slices: order 0 (piecewise constant), 1 (linear) and 2\n"
+    "(a quadratic per slab of two spacings), at spacing 1 and 2 slices. xi = the integral of |signal -\n"
+    "reconstruction| along the ray (scalar levels x slices). Writes DIR/ray.csv, DIR/xi.csv, DIR/ray.gp and,\n"
+    "when gnuplot is installed, DIR/ray.png. The transfer-function and mode options do not apply.\n\n"
+    "  -o DIR               the folder to write (made if missing)\n"
+    "  --pixel X,Y          the final-image position of the ray (default: the image centre)\n";
+
+static const char script[] =
+    "# ray.gp: the plot of volfix-sim ray (El Hajjar et al. 2008, Figures 1-5). Run here: gnuplot ray.gp\n"
+    "set terminal pngcairo size 1100,900 font ',10'\n"
+    "set output 'ray.png'\n"
+    "set datafile separator ','\n"
+    "set datafile missing 'nan'\n"
+    "set key outside right top\n"
+    "set grid\n"
+    "set xlabel 'k (slices along the principal axis)'\n"
+    "set ylabel 'scalar'\n"
+    "set multiplot layout 2,1 title '%s'\n"
+    "set title 'sample spacing 1 slice: xi0 %.4g, xi1 %.4g, xi2 %.4g'\n"
+    "plot 'ray.csv' using 1:2 with lines lw 2 lc rgb 'black' title 'signal', \\\n"
+    "     '' using 1:3 with lines lc rgb '#d95f02' title 'order 0', \\\n"
+    "     '' using 1:4 with lines lc rgb '#1b9e77' title 'order 1', \\\n"
+    "     '' using 1:5 with lines lc rgb '#7570b3' title 'order 2'\n"
+    "set title 'sample spacing 2 slices: xi0 %.4g, xi1 %.4g, xi2 %.4g'\n"
+    "plot 'ray.csv' using 1:2 with lines lw 2 lc rgb 'black' title 'signal', \\\n"
+    "     '' using 1:6 with lines lc rgb '#d95f02' title 'order 0', \\\n"
+    "     '' using 1:7 with lines lc rgb '#1b9e77' title 'order 1', \\\n"
+    "     '' using 1:8 with lines lc rgb '#7570b3' title 'order 2'\n"
+    "unset multiplot\n";
+
+static int write_files(const char *dir, const truth_study_t *st, const char *about);
+static int run_gnuplot(const char *dir);
+
+int sim_cmd_ray(int argc, char **argv)
+{
+    char usage[4096], err[VFP_ERR_LEN], about[512];
+    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
+    sim_opts_t o;
+    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_PIXEL, usage);
+    if (status)
+        return status == 1 ? 0 : 2;
+    if (!o.out) {
+        fprintf(stderr, "volfix-sim ray: no output folder (-o DIR)\n");
+        return 2;
+    }
+    if (mkdir(o.out, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "volfix-sim: %s: cannot make the folder\n", o.out);
+        return 2;
+    }
+    sim_scene_t scene;
+    if (sim_scene_load(&scene, &o, err, sizeof err)) {
+        fprintf(stderr, "volfix-sim: %s\n", err);
+        return 2;
+    }
+    double px = o.have_pixel ? o.pixel[0] : (o.width - 1) / 2.0, py = o.have_pixel ? o.pixel[1] : (o.height - 1) / 2.0;
+    sim_ref_inputs_t in;
+    truth_study_t st = {0};
+    if (sim_ref_inputs(&scene, &in)) {
+        fprintf(stderr, "volfix-sim: out of memory\n");
+        sim_scene_free(&scene);
+        return 2;
+    }
+    status = truth_study_ray(&in.vol, &in.view, (int)o.width, (int)o.height, px, py, PER_VOXEL, &st);
+    /* what the ray depends on: not the transfer function or the mode */
+    const char *base = strrchr(scene.vol.name, '/');
+    char view[64];
+    snprintf(view, sizeof view, o.roll != 0 ? "%g,%g,%g" : "%g,%g", o.azimuth, o.elevation, o.roll);
+    snprintf(about, sizeof about, "%s %ux%u view %s zoom %g window %d,%d", base ? base + 1 : scene.vol.name, o.width,
+             o.height, view, o.zoom, scene.window.lo, scene.window.hi);
+    sim_ref_inputs_free(&in);
+    sim_scene_free(&scene);
+    if (status != 0) {
+        fprintf(stderr, "volfix-sim: pixel %g,%g: %s\n", px, py,
+                status > 0 ? "the ray misses the volume or crosses fewer than 4 of its slices (try a pixel nearer the "
+                             "centre)"
+                           : "out of memory");
+        return 2;
+    }
+    char title[700];
+    snprintf(title, sizeof title, "%s, pixel %g,%g", about, px, py);
+    status = write_files(o.out, &st, title);
+    if (status == 0) {
+        printf("%s: ray through slices k %.2f..%.2f along %c%s (slab %.4f d_ref); reconstructions compared on "
+               "k %g..%g\n",
+               title, st.k_in, st.k_out, "xyz"[st.k_axis], st.k_flip ? " (looking along -k)" : "", st.slab, st.k_a,
+               st.k_b);
+        printf("xi = integral |signal - reconstruction| dk (scalar levels x slices)\n");
+        printf("           spacing 1    spacing 2\n");
+        for (int order = 0; order < 3; order++)
+            printf("order %d    %-12.4f %.4f\n", order, st.xi[order][0], st.xi[order][1]);
+        int plot = run_gnuplot(o.out);
+        printf("wrote %s/ray.csv, %s/xi.csv, %s/ray.gp%s%s%s\n", o.out, o.out, o.out, plot == 0 ? ", " : "",
+               plot == 0 ? o.out : "", plot == 0 ? "/ray.png" : "");
+        if (plot == 127)
+            fprintf(stderr, "volfix-sim: gnuplot is not installed: no ray.png (apt-get install gnuplot-nox)\n");
+        else if (plot != 0)
+            fprintf(stderr, "volfix-sim: gnuplot failed on %s/ray.gp: no ray.png\n", o.out);
+    }
+    truth_study_free(&st);
+    return status;
+}
+
+/* ---- static functions ---------------------------------------------------------------------------------- */
+
+/* Open dir/name for writing (path receives the name); on failure print one line and return NULL. */
+static FILE *open_in(const char *dir, const char *name, char *path, size_t len)
+{
+    snprintf(path, len, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    if (!f)
+        fprintf(stderr, "volfix-sim: %s: cannot write\n", path);
+    return f;
+}
+
+static int close_file(FILE *f, const char *path)
+{
+    if (fclose(f) == 0)
+        return 0;
+    fprintf(stderr, "volfix-sim: %s: cannot write\n", path);
+    return 2;
+}
+
+static int write_files(const char *dir, const truth_study_t *st, const char *about)
+{
+    char path[4096];
+    FILE *f = open_in(dir, "ray.csv", path, sizeof path);
+    if (!f)
+        return 2;
+    fprintf(f, "t,signal,order0_1,order1_1,order2_1,order0_2,order1_2,order2_2\n");
+    for (int r = 0; r < st->rows; r++) {
+        const double *v = st->table + 8 * r;
+        fprintf(f, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]);
+    }
+    if (close_file(f, path) || !(f = open_in(dir, "xi.csv", path, sizeof path)))
+        return 2;
+    fprintf(f, "order,spacing,xi\n");
+    for (int order = 0; order < 3; order++)
+        for (int h = 1; h <= 2; h++)
+            fprintf(f, "%d,%d,%.6f\n", order, h, st->xi[order][h - 1]);
+    if (close_file(f, path) || !(f = open_in(dir, "ray.gp", path, sizeof path)))
+        return 2;
+    char quoted[700];
+    size_t n = 0;
+    for (const char *c = about; *c && n + 1 < sizeof quoted; c++)
+        if (*c != '\'') /* the title sits in single quotes */
+            quoted[n++] = *c;
+    quoted[n] = 0;
+    fprintf(f, script, quoted, st->xi[0][0], st->xi[1][0], st->xi[2][0], st->xi[0][1], st->xi[1][1], st->xi[2][1]);
+    return close_file(f, path);
+}
+
+/* gnuplot ray.gp in dir; its messages go to our stderr. Returns its exit status, 127 when it is not installed. */
+static int run_gnuplot(const char *dir)
+{
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid < 0)
+        return 1;
+    if (pid == 0) {
+        if (chdir(dir) != 0)
+            _exit(1);
+        execlp("gnuplot", "gnuplot", "ray.gp", (char *)NULL);
+        _exit(127);
+    }
+    int wstatus;
+    if (waitpid(pid, &wstatus, 0) != pid || !WIFEXITED(wstatus))
+        return 1;
+    return WEXITSTATUS(wstatus);
+}

@@ -1,0 +1,224 @@
+/* truth_ray.c: the truth's camera (section 3), trilinear reconstruction, and one ray walked cell by cell. */
+#include "truth/truth.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#define PI 3.14159265358979323846
+#define MAX_SUBSTEPS 4096 /* per cell: a bound for absurd tolerances, never reached by the defaults */
+
+static void sincos_bau(int32_t bau, double *s, double *c);
+static void cell_segment(const ref_volume_t *vol, const truth_tf_t *tf, const truth_opts_t *opts, const int cell[3],
+                         const double o[3], const double d[3], double t0, double t1, truth_acc_t *acc);
+
+int truth_camera(const ref_volume_t *vol, const ref_view_t *view, int out_w, int out_h, truth_camera_t *cam)
+{
+    if (!vol || !vol->scalars || !view || !cam || out_w < 1 || out_h < 1 || !(view->zoom > 0) ||
+        !isfinite(view->zoom))
+        return -1;
+    double spmin = INFINITY, spmax = 0, diag2 = 0;
+    for (int a = 0; a < 3; a++) {
+        if (vol->dims[a] < 2 || vol->dims[a] > REF_MAX_DIM || !(vol->spacing[a] > 0) || !isfinite(vol->spacing[a]))
+            return -1;
+        spmin = fmin(spmin, vol->spacing[a]);
+        spmax = fmax(spmax, vol->spacing[a]);
+    }
+    if (spmax > REF_MAX_ANISOTROPY * spmin)
+        return -1;
+    for (int a = 0; a < 3; a++) {
+        cam->dims[a] = vol->dims[a];
+        cam->Sr[a] = vol->spacing[a] / spmin;
+        cam->centre[a] = (vol->dims[a] - 1) / 2.0;
+        diag2 += (cam->Sr[a] * (vol->dims[a] - 1)) * (cam->Sr[a] * (vol->dims[a] - 1));
+    }
+    cam->out_w = out_w;
+    cam->out_h = out_h;
+    cam->scale = view->zoom * (out_w < out_h ? out_w : out_h) / sqrt(diag2);
+    /* R = Rz(roll) Rx(el) Ry(az), multiplied out */
+    double sa, ca, se, ce, sr, cr;
+    sincos_bau(view->azimuth, &sa, &ca);
+    sincos_bau(view->elevation, &se, &ce);
+    sincos_bau(view->roll, &sr, &cr);
+    double X[3][3] = {{ca, 0, sa}, {se * sa, ce, -se * ca}, {-ce * sa, se, ce * ca}}; /* Rx(el) Ry(az) */
+    for (int c = 0; c < 3; c++) {
+        cam->R[0][c] = cr * X[0][c] - sr * X[1][c];
+        cam->R[1][c] = sr * X[0][c] + cr * X[1][c];
+        cam->R[2][c] = X[2][c];
+    }
+    return 0;
+}
+
+int truth_camera_ray(const truth_camera_t *cam, double px, double py, double origin[3], double dir[3],
+                     double *t_in, double *t_out)
+{
+    double ex = (px - (cam->out_w - 1) / 2.0) / cam->scale, ey = (py - (cam->out_h - 1) / 2.0) / cam->scale;
+    double lo = -INFINITY, hi = INFINITY;
+    for (int a = 0; a < 3; a++) {
+        /* p = c + Sr^-1 R^T (e_x, e_y, t) */
+        origin[a] = cam->centre[a] + (cam->R[0][a] * ex + cam->R[1][a] * ey) / cam->Sr[a];
+        dir[a] = cam->R[2][a] / cam->Sr[a];
+    }
+    for (int a = 0; a < 3; a++) {
+        double top = cam->dims[a] - 1;
+        if (dir[a] == 0) {
+            if (origin[a] < 0 || origin[a] > top)
+                lo = INFINITY; /* parallel to this axis' faces and outside them */
+            continue;
+        }
+        double t0 = (0 - origin[a]) / dir[a], t1 = (top - origin[a]) / dir[a];
+        lo = fmax(lo, fmin(t0, t1));
+        hi = fmin(hi, fmax(t0, t1));
+    }
+    *t_in = lo;
+    *t_out = hi;
+    return lo <= hi && isfinite(lo);
+}
+
+double truth_sample(const ref_volume_t *vol, const double p[3])
+{
+    int base[3];
+    double f[3];
+    for (int a = 0; a < 3; a++) {
+        double x = fmin(fmax(p[a], 0.0), vol->dims[a] - 1.0);
+        base[a] = (int)x < vol->dims[a] - 2 ? (int)x : vol->dims[a] - 2;
+        f[a] = x - base[a];
+    }
+    size_t sx = 1, sy = (size_t)vol->dims[0], sz = sy * vol->dims[1];
+    const uint8_t *v = vol->scalars + base[0] + sy * base[1] + sz * base[2];
+    double c00 = v[0] + f[0] * (v[sx] - v[0]), c10 = v[sy] + f[0] * (v[sy + sx] - v[sy]);
+    double c01 = v[sz] + f[0] * (v[sz + sx] - v[sz]), c11 = v[sz + sy] + f[0] * (v[sz + sy + sx] - v[sz + sy]);
+    double c0 = c00 + f[1] * (c10 - c00), c1 = c01 + f[1] * (c11 - c01);
+    return c0 + f[2] * (c1 - c0);
+}
+
+void truth_trace(const ref_volume_t *vol, const truth_tf_t *tf, const truth_camera_t *cam, const truth_opts_t *opts,
+                 double px, double py, truth_acc_t *acc)
+{
+    acc->T = 1;
+    acc->C[0] = acc->C[1] = acc->C[2] = 0;
+    double o[3], d[3], t_in, t_out;
+    if (!truth_camera_ray(cam, px, py, o, d, &t_in, &t_out))
+        return;
+    /* 3D DDA (Amanatides and Woo) through the cells [c, c + 1]^3, c_a in 0..n_a - 2; a ray on a cell face may be
+     * given either cell: trilinear interpolation is continuous there */
+    int cell[3], step[3];
+    double t_next[3];
+    for (int a = 0; a < 3; a++) {
+        double p = o[a] + t_in * d[a];
+        step[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
+        double c = step[a] < 0 ? ceil(p) - 1 : floor(p);
+        cell[a] = c < 0 ? 0 : c > vol->dims[a] - 2 ? vol->dims[a] - 2 : (int)c;
+        t_next[a] = step[a] == 0 ? INFINITY : (cell[a] + (step[a] > 0) - o[a]) / d[a];
+    }
+    double t0 = t_in;
+    while (t0 < t_out && acc->T > 1.0 - TRUTH_STOP_OPACITY) {
+        int a = t_next[0] <= t_next[1] && t_next[0] <= t_next[2] ? 0 : t_next[1] <= t_next[2] ? 1 : 2;
+        double t1 = fmin(t_next[a], t_out);
+        if (t1 > t0) {
+            cell_segment(vol, tf, opts, cell, o, d, t0, t1, acc);
+            t0 = t1;
+        }
+        if (t_next[a] >= t_out)
+            break;
+        cell[a] += step[a];
+        if (cell[a] < 0 || cell[a] > vol->dims[a] - 2)
+            break;
+        t_next[a] = (cell[a] + (step[a] > 0) - o[a]) / d[a];
+    }
+}
+
+int truth_ray_ex(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const ref_view_t *view,
+                 int out_w, int out_h, double px, double py, const truth_opts_t *opts, double rgba_out[4])
+{
+    truth_opts_t defaults = TRUTH_OPTS_DEFAULT;
+    truth_camera_t cam;
+    truth_tf_t *prepared = malloc(sizeof *prepared);
+    if (!rgba_out || !prepared || truth_camera(vol, view, out_w, out_h, &cam) ||
+        truth_tf_init(prepared, tf, npoints) ||
+        (opts && !(opts->max_step > 0 && opts->scalar_tol > 0 && opts->steep >= 0))) {
+        free(prepared);
+        return -1;
+    }
+    truth_acc_t acc;
+    truth_trace(vol, prepared, &cam, opts ? opts : &defaults, px, py, &acc);
+    free(prepared);
+    for (int c = 0; c < 3; c++)
+        rgba_out[c] = acc.C[c];
+    rgba_out[3] = 1.0 - acc.T;
+    return 0;
+}
+
+int truth_ray(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const ref_view_t *view, int out_w,
+              int out_h, double px, double py, double rgba_out[4])
+{
+    return truth_ray_ex(vol, tf, npoints, view, out_w, out_h, px, py, NULL, rgba_out);
+}
+
+/* ---- static functions ---------------------------------------------------------------------------------- */
+
+/* Reduced to a quarter turn in integers first, so that multiples of 90 degrees give exact 0 and +-1. */
+static void sincos_bau(int32_t bau, double *s, double *c)
+{
+    int64_t t = ((int64_t)bau % 65536 + 65536) % 65536;
+    double x = (double)(t % 16384) * (2.0 * PI / 65536.0), s0 = sin(x), c0 = cos(x);
+    switch (t / 16384) {
+    case 0: *s = s0, *c = c0; break;
+    case 1: *s = c0, *c = -s0; break;
+    case 2: *s = -s0, *c = -c0; break;
+    default: *s = -c0, *c = s0; break;
+    }
+}
+
+/* The ray's piece [t0, t1] inside one cell. Along it the trilinear scalar is a cubic b0 + b1 u + b2 u^2 +
+ * b3 u^3 in u in [0, 1]; it is taken as linear across sub-steps of at most max_step voxels (index and world
+ * length both) and short enough that the cubic's distance from its chord, at most |f''| / (8 n^2), stays within
+ * scalar_tol. */
+static void cell_segment(const ref_volume_t *vol, const truth_tf_t *tf, const truth_opts_t *opts, const int cell[3],
+                         const double o[3], const double d[3], double t0, double t1, truth_acc_t *acc)
+{
+    size_t sy = (size_t)vol->dims[0], sz = sy * vol->dims[1];
+    const uint8_t *v = vol->scalars + cell[0] + sy * cell[1] + sz * cell[2];
+    double c[8];
+    int lo = 255, hi = 0;
+    for (int n = 0; n < 8; n++) {
+        int s = v[(n & 1) + sy * ((n >> 1) & 1) + sz * (n >> 2)];
+        c[n] = s;
+        lo = s < lo ? s : lo;
+        hi = s > hi ? s : hi;
+    }
+    if (truth_tf_clear(tf, lo, hi))
+        return; /* trilinear values stay within the corners' range */
+    double q0[3], dq[3], len2 = 0;
+    for (int a = 0; a < 3; a++) {
+        q0[a] = fmin(fmax(o[a] + t0 * d[a] - cell[a], 0.0), 1.0);
+        dq[a] = fmin(fmax(o[a] + t1 * d[a] - cell[a], 0.0), 1.0) - q0[a];
+        len2 += dq[a] * dq[a];
+    }
+    /* f = k0 + kx x + ky y + kz z + kxy xy + kxz xz + kyz yz + kxyz xyz, corners c[x + 2y + 4z] */
+    double k0 = c[0], kx = c[1] - c[0], ky = c[2] - c[0], kz = c[4] - c[0];
+    double kxy = c[3] - c[1] - c[2] + c[0], kxz = c[5] - c[1] - c[4] + c[0], kyz = c[6] - c[2] - c[4] + c[0];
+    double kxyz = c[7] - c[3] - c[5] - c[6] + c[1] + c[2] + c[4] - c[0];
+    double x = q0[0], y = q0[1], z = q0[2], X = dq[0], Y = dq[1], Z = dq[2];
+    double b0 = k0 + kx * x + ky * y + kz * z + kxy * x * y + kxz * x * z + kyz * y * z + kxyz * x * y * z;
+    double b1 = kx * X + ky * Y + kz * Z + kxy * (x * Y + y * X) + kxz * (x * Z + z * X) + kyz * (y * Z + z * Y) +
+                kxyz * (X * y * z + x * Y * z + x * y * Z);
+    double b2 = kxy * X * Y + kxz * X * Z + kyz * Y * Z + kxyz * (X * Y * z + X * y * Z + x * Y * Z);
+    double b3 = kxyz * X * Y * Z;
+
+    double length = t1 - t0, curve = fmax(fabs(2 * b2), fabs(2 * b2 + 6 * b3));
+    double steep = truth_tf_steepness(tf, lo, hi), tol = opts->scalar_tol;
+    if (steep < opts->steep) /* a gentle transfer function: a larger scalar error makes the same difference */
+        tol = fmax(tol, steep > 0 ? fmin(TRUTH_LOOSEST_TOL, tol * opts->steep / steep) : TRUTH_LOOSEST_TOL);
+    double steps = ceil(fmax(length, sqrt(len2)) / opts->max_step);
+    steps = fmax(steps, ceil(sqrt(curve / (8 * tol))));
+    int n = steps < 1 ? 1 : steps > MAX_SUBSTEPS ? MAX_SUBSTEPS : (int)steps;
+    double s_prev = b0, h = length / n;
+    for (int k = 1; k <= n && acc->T > 1.0 - TRUTH_STOP_OPACITY; k++) {
+        double u = (double)k / n, s = b0 + u * (b1 + u * (b2 + u * b3));
+        /* most sub-steps of a cell near a narrow peak miss it: the integer range check is cheaper than the walk */
+        int below = (int)floor(fmax(fmin(s, s_prev), 0.0)), above = (int)ceil(fmin(fmax(s, s_prev), 255.0));
+        if (!truth_tf_clear(tf, below, above))
+            truth_tf_composite(tf, s_prev, s, h, acc);
+        s_prev = s;
+    }
+}

@@ -1,0 +1,100 @@
+#!/bin/sh
+# The ground truth from the outside: compare --against truth, render --truth, and the ray study (volfix-sim ray)
+# with and without gnuplot.
+cd "$(dirname "$0")/../.." || exit 2
+sim=${BUILD:-build}/volfix-sim
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+ok() { echo "ok - truth-cli/$1"; }
+fail() { echo "not ok - truth-cli/$1: $2"; }
+
+# expect_error NAME PHRASE ARGS...: status 2 and exactly one stderr line containing PHRASE
+expect_error() {
+    name=$1 phrase=$2
+    shift 2
+    "$sim" "$@" >"$tmp/out" 2>"$tmp/err"
+    status=$?
+    if [ $status -ne 2 ]; then
+        fail "$name" "exit status $status, expected 2"
+    elif [ "$(wc -l <"$tmp/err")" -ne 1 ] || ! grep -qF -- "$phrase" "$tmp/err"; then
+        fail "$name" "expected one stderr line with '$phrase': $(tr '\n' '|' <"$tmp/err")"
+    else
+        ok "$name"
+    fi
+}
+
+# compare against the truth
+if "$sim" compare phantom:sphere:24 --size 64x64 --against truth --json >"$tmp/out" 2>"$tmp/err" &&
+    grep -q '"against": "truth"' "$tmp/out" && grep -q '"psnr_db": [0-9]' "$tmp/out" &&
+    grep -q '"max_abs": ' "$tmp/out" && grep -q '"mean_abs": ' "$tmp/out" && grep -q '"over1_pct": ' "$tmp/out"; then
+    ok "compare --against truth --json"
+else
+    fail "compare --against truth --json" "$(cat "$tmp/out" "$tmp/err" | head -n 3 | tr '\n' '|')"
+fi
+if "$sim" compare phantom:sphere:24 --size 64x64 --against reference --json >"$tmp/out" 2>&1 &&
+    grep -q '"against": "reference"' "$tmp/out"; then
+    ok "compare --against reference"
+else
+    fail "compare --against reference" "$(head -n 2 "$tmp/out")"
+fi
+expect_error "bad --against" "--against core: expected reference or truth" compare phantom:sphere:8 --against core
+"$sim" compare --help >"$tmp/out" 2>&1 && grep -q -- '--against' "$tmp/out" && ok "compare --help names --against" ||
+    fail "compare --help" "no --against"
+
+# render the truth
+if "$sim" render phantom:sphere:16 --size 48x40 --truth -o "$tmp/truth.png" >"$tmp/out" 2>"$tmp/err" &&
+    [ -s "$tmp/truth.png" ] && grep -q '(ground truth)' "$tmp/out"; then
+    ok "render --truth"
+else
+    fail "render --truth" "$(cat "$tmp/err")"
+fi
+expect_error "render --truth --reference" "give --reference or --truth, not both" render phantom:sphere:8 --truth \
+    --reference -o "$tmp/x.png"
+expect_error "compare takes no --truth" "--truth: unknown option" compare phantom:sphere:8 --truth
+
+# the ray study
+dir="$tmp/ray"
+if "$sim" ray phantom:marschner-lobb:41 --size 128x128 -o "$dir" >"$tmp/out" 2>"$tmp/err"; then
+    rows=$(wc -l <"$dir/ray.csv")
+    if [ "$(head -n 1 "$dir/ray.csv")" != "t,signal,order0_1,order1_1,order2_1,order0_2,order1_2,order2_2" ] ||
+        [ "$rows" -lt 2000 ]; then
+        fail "ray: ray.csv" "header '$(head -n 1 "$dir/ray.csv")', $rows lines"
+    else
+        ok "ray: ray.csv"
+    fi
+    if [ "$(head -n 1 "$dir/xi.csv")" = "order,spacing,xi" ] && [ "$(wc -l <"$dir/xi.csv")" -eq 7 ]; then
+        ok "ray: xi.csv"
+    else
+        fail "ray: xi.csv" "$(tr '\n' '|' <"$dir/xi.csv")"
+    fi
+    # the El Hajjar ranking on a smooth signal: order 2 beats order 1 beats order 0 at spacing 1
+    if awk -F, 'NR > 1 && $2 == 1 { xi[$1] = $3 } END { exit !(xi[2] < xi[1] && xi[1] < xi[0]) }' "$dir/xi.csv"; then
+        ok "ray: xi falls with the order at spacing 1"
+    else
+        fail "ray: xi order" "$(tr '\n' '|' <"$dir/xi.csv")"
+    fi
+    grep -q '^order 2 ' "$tmp/out" && ok "ray: summary" || fail "ray: summary" "$(head -n 3 "$tmp/out")"
+    if command -v gnuplot >/dev/null 2>&1; then
+        [ -s "$dir/ray.png" ] && ok "ray: ray.png" || fail "ray: ray.png" "missing ($(cat "$tmp/err"))"
+    else
+        echo "# skip: gnuplot not installed, no ray.png expected"
+    fi
+else
+    fail "ray" "status $?: $(cat "$tmp/err")"
+fi
+
+# without gnuplot: one line saying so, the CSVs all the same, status 0
+if PATH=/nonexistent "$sim" ray phantom:marschner-lobb:41 --size 64x64 --pixel 30,33 -o "$tmp/nogp" >"$tmp/out" \
+    2>"$tmp/err" && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q 'gnuplot' "$tmp/err" && [ -s "$tmp/nogp/ray.csv" ] &&
+    [ -s "$tmp/nogp/xi.csv" ] && [ ! -e "$tmp/nogp/ray.png" ]; then
+    ok "ray without gnuplot"
+else
+    fail "ray without gnuplot" "$(tr '\n' '|' <"$tmp/err")"
+fi
+expect_error "ray misses" "misses the volume or crosses fewer than 4" ray phantom:marschner-lobb:41 --size 64x64 \
+    --pixel 0,0 -o "$tmp/miss"
+expect_error "ray bad pixel" "--pixel 3: expected X,Y" ray phantom:sphere:8 --pixel 3 -o "$tmp/x"
+expect_error "ray no output" "no output folder" ray phantom:sphere:8
+"$sim" ray --help >"$tmp/out" 2>&1 && grep -q '^usage: volfix-sim ray' "$tmp/out" && ok "ray --help" ||
+    fail "ray --help" "$(head -n 1 "$tmp/out")"
