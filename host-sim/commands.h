@@ -7,5 +7,7 @@ int sim_cmd_render(int argc, char **argv);
 int sim_cmd_compare(int argc, char **argv);
 int sim_cmd_bench(int argc, char **argv);
 int sim_cmd_tables(int argc, char **argv);
+int sim_cmd_ray(int argc, char **argv);
+int sim_cmd_study(int argc, char **argv);
 
 #endif

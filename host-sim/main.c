@@ -9,10 +9,12 @@
 
 static const char usage[] =
     "usage: volfix-sim COMMAND [options]   (volfix-sim COMMAND --help for its options)\n"
-    "  render    render one image with the fixed-point core (or the double reference) to PNG\n"
-    "  compare   render with the core and the double reference and report the difference\n"
+    "  render    render one image with the fixed-point core (or the double reference, or the truth) to PNG\n"
+    "  compare   render with the core and the double reference (or the truth) and report the difference\n"
     "  bench     time 90 frames of a 180-degree turn (Schulze et al.'s protocol)\n"
-    "  tables    build a pre-integrated table with each builder: time, error, picture\n";
+    "  tables    build a pre-integrated table with each builder: time, error, picture\n"
+    "  ray       one ray's signal and its order 0, 1, 2 reconstructions (El Hajjar et al.): CSV, plot\n"
+    "  study     the fixed-point precision study: errors, plots, report.md\n";
 
 int main(int argc, char **argv)
 {
@@ -29,6 +31,10 @@ int main(int argc, char **argv)
         return sim_cmd_bench(argc - 2, argv + 2);
     if (strcmp(cmd, "tables") == 0)
         return sim_cmd_tables(argc - 2, argv + 2);
-    fprintf(stderr, "volfix-sim: unknown command '%s' (expected render, compare, bench or tables; see --help)\n", cmd);
+    if (strcmp(cmd, "ray") == 0)
+        return sim_cmd_ray(argc - 2, argv + 2);
+    if (strcmp(cmd, "study") == 0)
+        return sim_cmd_study(argc - 2, argv + 2);
+    fprintf(stderr, "volfix-sim: unknown command '%s' (expected render, compare, bench, tables, ray or study; see --help)\n", cmd);
     return 2;
 }

@@ -1,0 +1,229 @@
+/* study.c: running the precision study (see study.h). */
+#include "study.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "pngio.h"
+
+static int to_rgb(const vf_image_t *img, uint8_t **rgb)
+{
+    *rgb = malloc((size_t)img->width * img->height * 3);
+    if (!*rgb)
+        return 2;
+    vfp_image_to_rgb(img, *rgb);
+    return 0;
+}
+
+vf_params_t study_default_params(void)
+{
+    vf_params_t p;
+    vf_params_default(&p);
+    return p;
+}
+
+int study_add_scene(study_t *st, const char *label, const char *volume, const char *preset, double azimuth,
+                    double elevation, double zoom, uint32_t size, char *err, size_t errlen)
+{
+    if (st->scene_count >= STUDY_MAX_SCENES) {
+        snprintf(err, errlen, "too many scenes (at most %d)", STUDY_MAX_SCENES);
+        return -1;
+    }
+    study_scene_t *sc = &st->scenes[st->scene_count];
+    memset(sc, 0, sizeof *sc);
+    snprintf(sc->label, sizeof sc->label, "%s", label);
+    snprintf(sc->volume, sizeof sc->volume, "%s", volume);
+    snprintf(sc->preset, sizeof sc->preset, "%s", preset);
+    sc->azimuth = azimuth;
+    sc->elevation = elevation;
+    sc->zoom = zoom;
+    sc->size = size;
+    char size_text[32];
+    snprintf(size_text, sizeof size_text, "%ux%u", size, size);
+    /* a preset name, or "file:PATH" for a transfer-function file */
+    int is_file = strncmp(sc->preset, "file:", 5) == 0;
+    char *argv[] = {sc->volume, is_file ? "--tf" : "--preset", is_file ? sc->preset + 5 : sc->preset, "--size",
+                    size_text};
+    sim_opts_t o;
+    if (sim_parse(&o, 5, argv, SIM_OPT_SCENE, "")) {
+        snprintf(err, errlen, "%s: bad scene", label);
+        return -1;
+    }
+    o.azimuth = azimuth;
+    o.elevation = elevation;
+    o.zoom = zoom;
+    o.threads = st->threads;
+    if (sim_scene_load(&sc->scene, &o, err, errlen))
+        return -1;
+    return st->scene_count++;
+}
+
+const uint8_t *study_truth(study_t *st, int scene, char *err, size_t errlen)
+{
+    study_scene_t *sc = &st->scenes[scene];
+    if (sc->truth)
+        return sc->truth;
+    vf_image_t img;
+    double t0 = vfp_now_ms();
+    if (sim_render_truth(&sc->scene, &img, err, errlen))
+        return NULL;
+    sc->truth_ms = vfp_now_ms() - t0;
+    int status = to_rgb(&img, &sc->truth);
+    sim_image_free(&img);
+    if (status) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    return sc->truth;
+}
+
+/* The reference for the algorithm's options (mode, table size, lookup, correction), at full precision: the
+ * core's precision knobs, 8- to 12-bit tables included, are what the study measures against it. */
+static const uint8_t *reference_for(study_t *st, int scene, const vf_params_t *p, char *err, size_t errlen)
+{
+    for (int i = 0; i < st->reference_count; i++) {
+        study_reference_t *r = &st->references[i];
+        if (r->scene == scene && r->mode == p->mode && r->table_size == p->table_size && r->lookup == p->lookup &&
+            r->correction == p->correction)
+            return r->rgb;
+    }
+    if (st->reference_count == STUDY_MAX_REFERENCES) {
+        snprintf(err, errlen, "too many reference images");
+        return NULL;
+    }
+    sim_scene_t s = st->scenes[scene].scene; /* a copy: only the parameters change */
+    s.params = study_default_params();
+    s.params.mode = p->mode;
+    s.params.table_size = p->table_size;
+    s.params.lookup = p->lookup;
+    s.params.correction = p->correction;
+    vf_factor_t factor;
+    vf_status_t fs = vf_factor(&factor, &s.vol.core, &s.view, s.width, s.height);
+    if (fs != VF_OK) {
+        snprintf(err, errlen, "cannot factor the view: %s", vf_status_text(fs));
+        return NULL;
+    }
+    vf_image_t img;
+    if (sim_render_reference(&s, &factor, &img, err, errlen))
+        return NULL;
+    study_reference_t *r = &st->references[st->reference_count];
+    r->scene = scene;
+    r->mode = p->mode;
+    r->table_size = p->table_size;
+    r->lookup = p->lookup;
+    r->correction = p->correction;
+    int status = to_rgb(&img, &r->rgb);
+    sim_image_free(&img);
+    if (status) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    st->reference_count++;
+    return r->rgb;
+}
+
+/* Render with the core; memory and band scratch too when asked. */
+static int render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, study_run_t *run, char *err,
+                       size_t errlen)
+{
+    const sim_scene_t *s = &st->scenes[scene].scene;
+    vf_image_t img;
+    vfp_render_t r;
+    if (sim_image_alloc(&img, s->width, s->height, VF_FORMAT_RGB888)) {
+        snprintf(err, errlen, "out of memory");
+        return 2;
+    }
+    int status = vfp_render_open(&r, params, &s->vol.core, 1, err, errlen);
+    if (status == 0)
+        status = vfp_render_set_window(&r, s->window, err, errlen);
+    if (status == 0)
+        status = vfp_render_set_tf(&r, s->points, s->npoints, err, errlen);
+    double t0 = vfp_now_ms();
+    if (status == 0)
+        status = vfp_render_frame(&r, &s->view, &img, err, errlen);
+    if (status == 0) {
+        vfp_image_to_rgb(&img, rgb);
+        if (run) {
+            run->ms = vfp_now_ms() - t0;
+            vf_renderer_memory(r.core, &run->memory);
+            run->band_bytes = vf_band_scratch_bytes(r.core, 8);
+        }
+    }
+    vfp_render_close(&r);
+    sim_image_free(&img);
+    return status;
+}
+
+int study_render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, char *err, size_t errlen)
+{
+    return render_core(st, scene, params, rgb, NULL, err, errlen);
+}
+
+static void progress(study_t *st, const study_run_t *run)
+{
+    const study_scene_t *sc = &st->scenes[run->scene];
+    double seconds = (vfp_now_ms() - st->started_ms) / 1000;
+    char line[256];
+    char truth[48] = "";
+    if (run->vs_truth.pixels)
+        snprintf(truth, sizeof truth, ", %.1f dB from the truth", run->vs_truth.psnr_db);
+    snprintf(line, sizeof line, "study: %d runs, %.0f s: %s %s %s = %s: %.1f dB from the reference%s", st->run_count,
+             seconds, sc->label, vf_mode_name(run->params.mode), run->factor, run->value, run->vs_reference.psnr_db,
+             truth);
+    if (st->progress_tty)
+        fprintf(stderr, "\r%-150.150s", line);
+    else
+        fprintf(stderr, "%s\n", line);
+}
+
+study_run_t *study_run(study_t *st, int scene, const vf_params_t *params, const char *factor, const char *value,
+                       int with_truth, char *err, size_t errlen)
+{
+    if (st->run_count >= STUDY_MAX_RUNS) {
+        snprintf(err, errlen, "too many runs");
+        return NULL;
+    }
+    const study_scene_t *sc = &st->scenes[scene];
+    const size_t pixels = (size_t)sc->size * sc->size;
+    const uint8_t *truth = with_truth ? study_truth(st, scene, err, errlen) : NULL;
+    if (with_truth && !truth)
+        return NULL;
+    const uint8_t *ref = reference_for(st, scene, params, err, errlen);
+    if (!ref)
+        return NULL;
+    uint8_t *rgb = malloc(pixels * 3);
+    if (!rgb) {
+        snprintf(err, errlen, "out of memory");
+        return NULL;
+    }
+    study_run_t *run = &st->runs[st->run_count];
+    memset(run, 0, sizeof *run);
+    run->scene = scene;
+    run->params = *params;
+    snprintf(run->factor, sizeof run->factor, "%s", factor);
+    snprintf(run->value, sizeof run->value, "%s", value);
+    if (render_core(st, scene, params, rgb, run, err, errlen)) {
+        free(rgb);
+        return NULL;
+    }
+    sim_diff(rgb, ref, pixels, &run->vs_reference);
+    if (truth)
+        sim_diff(rgb, truth, pixels, &run->vs_truth);
+    free(rgb);
+    st->run_count++;
+    progress(st, run);
+    return run;
+}
+
+void study_free(study_t *st)
+{
+    for (int i = 0; i < st->scene_count; i++) {
+        free(st->scenes[i].truth);
+        sim_scene_free(&st->scenes[i].scene);
+    }
+    for (int i = 0; i < st->reference_count; i++)
+        free(st->references[i].rgb);
+    st->reference_count = 0;
+    st->scene_count = st->run_count = 0;
+}

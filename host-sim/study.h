@@ -1,0 +1,93 @@
+/*
+ * study.h: the fixed-point precision study: render scenes with many configurations of the core, measure each
+ * against the double reference of the same algorithm (the fixed-point error alone) and against the ground
+ * truth (the algorithm's own error), and record memory. study.c runs; study_report.c writes CSV, plots and
+ * report.md; cmd_study.c decides what to run.
+ */
+#ifndef SIM_STUDY_H
+#define SIM_STUDY_H
+
+#include <stdio.h>
+
+#include "imgcmp.h"
+#include "scene.h"
+
+#define STUDY_MAX_SCENES 64
+#define STUDY_MAX_RUNS 2048
+
+/* One scene: volume, transfer function, view and size; its truth image is rendered once. */
+typedef struct study_scene {
+    char label[64];        /* "ml41-sharp" */
+    char volume[512];      /* file or phantom spec */
+    char preset[1200];     /* a preset name, or "file:PATH" */
+    double azimuth, elevation, zoom;
+    uint32_t size;         /* square images */
+    sim_scene_t scene;     /* loaded */
+    uint8_t *truth;        /* size * size * 3, or NULL until rendered */
+    double truth_ms;
+} study_scene_t;
+
+/* One run: a scene, a configuration, which factor it varies (for the plots), and what was measured. */
+typedef struct study_run {
+    int scene;
+    vf_params_t params;
+    char factor[32];       /* "table_bits", "order", ... or "default" */
+    char value[32];        /* the factor's value as text */
+    sim_diff_t vs_reference, vs_truth; /* vs_truth.pixels is 0 when the run had no truth */
+    vf_memory_t memory;
+    size_t band_bytes;     /* buffer slices and skip links for one thread (8-row bands) */
+    double ms;             /* one core frame on this machine, informative only */
+} study_run_t;
+
+/* Reference images depend on the scene and the algorithm's options (mode, table size, lookup, correction), not
+ * on the core's precision: each is rendered once. */
+typedef struct study_reference {
+    int scene;
+    vf_mode_t mode;
+    uint32_t table_size;
+    vf_lookup_t lookup;
+    vf_correction_t correction;
+    uint8_t *rgb;
+} study_reference_t;
+
+#define STUDY_MAX_REFERENCES 256
+
+typedef struct study {
+    study_scene_t scenes[STUDY_MAX_SCENES];
+    int scene_count;
+    study_run_t runs[STUDY_MAX_RUNS];
+    int run_count;
+    study_reference_t references[STUDY_MAX_REFERENCES];
+    int reference_count;
+    int threads;           /* for truth renders */
+    int quick;
+    const char *dir;
+    double started_ms;
+    int progress_tty;      /* rewrite one progress line (a terminal) or print one per run (a log) */
+} study_t;
+
+/* Add a scene; returns its index, or -1 with err. The volume is loaded at once. */
+int study_add_scene(study_t *st, const char *label, const char *volume, const char *preset, double azimuth,
+                    double elevation, double zoom, uint32_t size, char *err, size_t errlen);
+
+/* The study's default configuration: preint1, 256 entries, 16-bit, nearest, rebuild, full precision. */
+vf_params_t study_default_params(void);
+
+/* Run one configuration on a scene (rendering the truth, unless with_truth is 0, and the matching reference
+ * first if they are not cached) and record it. Returns the run, or NULL with err. */
+study_run_t *study_run(study_t *st, int scene, const vf_params_t *params, const char *factor, const char *value,
+                       int with_truth, char *err, size_t errlen);
+
+/* Render a scene's core image for a configuration into rgb (size * size * 3). Returns 0, or 2 with err. */
+int study_render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, char *err, size_t errlen);
+
+/* The scene's truth image (rendered on first use). NULL with err on failure. */
+const uint8_t *study_truth(study_t *st, int scene, char *err, size_t errlen);
+
+void study_free(study_t *st);
+
+/* study_report.c: CSV of every run, gnuplot plots, image strips, report.md and summary.json in st->dir.
+ * Returns 0, or 2 with err. */
+int study_write_report(study_t *st, char *err, size_t errlen);
+
+#endif
