@@ -1,4 +1,5 @@
-/* phantom.c: synthetic uint8 volumes (Marschner-Lobb, 3D Shepp-Logan, a radial sphere): a first run needs no data. */
+/* phantom.c: synthetic uint8 volumes (Marschner-Lobb, 3D Shepp-Logan, a radial sphere, a uniform cube): a first run
+ * needs no data. */
 
 /*********************
  *      INCLUDES
@@ -15,7 +16,7 @@
  *********************/
 #define MIN_SIDE 2
 #define MAX_SIDE 1024
-#define NAMES "expected marschner-lobb, shepp-logan or sphere"
+#define NAMES "expected marschner-lobb, shepp-logan, sphere or cube"
 
 /* Marschner and Lobb 1994, "An evaluation of reconstruction filters for volume rendering": the test signal
  * rho(x,y,z) = (1 - sin(pi z / 2) + alpha (1 + rho_r(sqrt(x^2 + y^2)))) / (2 (1 + alpha)) on [-1,1]^3, with
@@ -28,7 +29,7 @@
 /**********************
  *      TYPES
  **********************/
-typedef enum phantom { PH_MARSCHNER_LOBB, PH_SHEPP_LOGAN, PH_SPHERE } phantom_t;
+typedef enum phantom { PH_MARSCHNER_LOBB, PH_SHEPP_LOGAN, PH_SPHERE, PH_CUBE } phantom_t;
 
 /* An ellipsoid of the 3D Shepp-Logan head: value added inside, semi-axes, centre, Euler angles in degrees. */
 typedef struct ellipsoid {
@@ -41,13 +42,14 @@ typedef struct ellipsoid {
 static void fill_marschner_lobb(uint8_t *v, uint32_t n);
 static void fill_shepp_logan(uint8_t *v, uint32_t n, double *slice);
 static void fill_sphere(uint8_t *v, uint32_t n);
+static void fill_cube(uint8_t *v, uint32_t n);
 static double coord(uint32_t i, uint32_t n);
 static uint8_t to_u8(double unit);
 
 /**********************
  *  STATIC VARIABLES
  **********************/
-static const char *const phantom_names[] = {"marschner-lobb", "shepp-logan", "sphere"};
+static const char *const phantom_names[] = {"marschner-lobb", "shepp-logan", "sphere", "cube"};
 
 /* Kak and Slaney's 3D Shepp-Logan ellipsoids with Toft's "modified" intensities (higher contrast), as in
  * Schabel's phantom3d: values sum to 1 (skull), 0.2 (brain), 0 (ventricles) and 0.3 (small features). */
@@ -73,11 +75,11 @@ int vfpi_load_phantom(vfp_volume_t *vol, const char *spec, char *err, size_t err
     const char *name = strchr(spec, ':') + 1; /* volume.c chose this reader by the "phantom:" prefix */
     const char *colon = strchr(name, ':');
     if (!colon)
-        return vfpi_fail(err, errlen, spec, 0, "expected phantom:NAME:N (NAME marschner-lobb, shepp-logan or sphere; "
+        return vfpi_fail(err, errlen, spec, 0, "expected phantom:NAME:N (NAME marschner-lobb, shepp-logan, sphere or cube; "
                          "N the size of each side, %d..%d)", MIN_SIDE, MAX_SIDE);
     size_t len = (size_t)(colon - name);
     int which = -1;
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < 4; i++)
         if (strlen(phantom_names[i]) == len && strncmp(name, phantom_names[i], len) == 0)
             which = i;
     if (which < 0)
@@ -113,6 +115,9 @@ int vfpi_load_phantom(vfp_volume_t *vol, const char *spec, char *err, size_t err
     }
     case PH_SPHERE:
         fill_sphere(vol->data, n);
+        break;
+    case PH_CUBE:
+        fill_cube(vol->data, n);
         break;
     }
     return 0;
@@ -215,4 +220,12 @@ static void fill_sphere(uint8_t *v, uint32_t n)
                 double dx = i - c, dy = j - c, dz = k - c, r = sqrt(dx * dx + dy * dy + dz * dz);
                 v[((size_t)k * n + j) * n + i] = r < radius ? to_u8(1.0 - r / radius) : 0;
             }
+}
+
+/* Every voxel 64 (a quarter of the range): a volume visible right up to its box, to measure how a renderer treats
+ * the box's faces (a ray caster sees a clean cube; shear-warp adds a slab or nothing at the side faces). */
+static void fill_cube(uint8_t *v, uint32_t n)
+{
+    for (size_t i = 0; i < (size_t)n * n * n; i++)
+        v[i] = 64;
 }

@@ -18,11 +18,13 @@ typedef struct preset {
 static const preset_t presets[] = {
     {"ramp", "opacity and grey level rise linearly from 0 to 1 over the window (the benchmark setting)", 2,
      {{0.0, 0, 0, 0, 0}, {1.0, 1, 1, 1, 1}}},
+    /* Narrow, but resolved: each peak is 0.04 of the range wide, ten entries of the default 256-entry table
+     * (narrower peaks test the table's resolution more than the integration; see the precision study). */
     {"sharp", "three narrow opacity peaks (orange, green, white): the case pre-integration exists for", 10,
      {{0.0, 0, 0, 0, 0},
-      {0.29, 1, 0.5, 0.1, 0}, {0.30, 1, 0.5, 0.1, 0.9}, {0.31, 1, 0.5, 0.1, 0},
-      {0.54, 0.2, 1, 0.3, 0}, {0.55, 0.2, 1, 0.3, 0.9}, {0.56, 0.2, 1, 0.3, 0},
-      {0.79, 1, 1, 1, 0}, {0.80, 1, 1, 1, 1}, {0.81, 1, 1, 1, 0}}},
+      {0.28, 1, 0.5, 0.1, 0}, {0.30, 1, 0.5, 0.1, 0.9}, {0.32, 1, 0.5, 0.1, 0},
+      {0.53, 0.2, 1, 0.3, 0}, {0.55, 0.2, 1, 0.3, 0.9}, {0.57, 0.2, 1, 0.3, 0},
+      {0.78, 1, 1, 1, 0}, {0.80, 1, 1, 1, 1}, {0.82, 1, 1, 1, 0}}},
     /* CT: with the default window (0.5 to 99.5 percentiles) air sits near 0, soft tissue near 0.42 and bone
      * from about 0.55 up; the skin layer is the partial-volume ramp between air and tissue. */
     {"ct-bone", "CT: bone, ivory and opaque; soft tissue and air clear", 4,

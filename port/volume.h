@@ -41,7 +41,7 @@ typedef struct vfp_load_opts {
 
 /* Load by name: a file path (format from its contents and extension: .nhdr/.nrrd, .nii/.nii.gz, .den, else raw,
  * which needs dims and type), or a synthetic volume "phantom:NAME:N" with NAME marschner-lobb, shepp-logan or
- * sphere and N the size of each side (2..1024). Returns 0, or 2 with `err` filled. */
+ * sphere or cube and N the size of each side (2..1024). Returns 0, or 2 with `err` filled. */
 int vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err, size_t errlen);
 void vfp_volume_free(vfp_volume_t *vol);
 

@@ -76,7 +76,7 @@ head -c 64 /dev/zero >"$tmp/voxels.raw"
 expect_error "raw without dims" "voxels.raw: raw data needs --dims" render "$tmp/voxels.raw" -o "$tmp/x.png"
 expect_error "raw size mismatch" "voxels.raw: truncated: expected 128 bytes" render "$tmp/voxels.raw" --dims 4,4,4 --type uint16 -o "$tmp/x.png"
 expect_error "bad dims" "--dims" render "$tmp/voxels.raw" --dims 4,4 --type uint8 -o "$tmp/x.png"
-expect_error "bad phantom" "unknown phantom 'cube'" render phantom:cube:16 -o "$tmp/x.png"
+expect_error "bad phantom" "unknown phantom 'box'" render phantom:box:16 -o "$tmp/x.png"
 head -c 348 /dev/zero >"$tmp/empty.nii"
 expect_error "bad nifti header" "empty.nii" render "$tmp/empty.nii" -o "$tmp/x.png"
 

@@ -421,7 +421,7 @@ static void phantom_sphere(void)
 static void phantom_errors(void)
 {
     fx_expect_error("phantom:foo:64", NULL, "phantom:foo:64",
-                    ": unknown phantom 'foo' (expected marschner-lobb, shepp-logan or sphere)");
+                    ": unknown phantom 'foo' (expected marschner-lobb, shepp-logan, sphere or cube)");
     fx_expect_error("phantom:sphere", NULL, "phantom:sphere", ": expected phantom:NAME:N");
     fx_expect_error("phantom:", NULL, "phantom:", ": expected phantom:NAME:N");
     fx_expect_error("phantom:sphere:1", NULL, "phantom:sphere:1", ": size 1 is out of range (expected 2..1024)");
