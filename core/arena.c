@@ -43,6 +43,13 @@ void *vfi_arena_alloc(vf_arena_t *arena, size_t bytes)
     return p;
 }
 
+void *vfi_arena_top(vf_arena_t *arena, size_t *bytes)
+{
+    /* used is always a multiple of VFI_ALIGN from an aligned start, so the top is where the next block goes */
+    *bytes = arena->base ? arena->size - arena->used : 0;
+    return arena->base ? arena->base + arena->used : NULL;
+}
+
 void vfi_arena_rewind(vf_arena_t *arena, size_t mark)
 {
     if (mark < arena->used)

@@ -16,6 +16,10 @@ size_t vfi_arena_block(size_t bytes);
  * core does not have.) */
 void vfi_zero(void *p, size_t bytes);
 
+/* The free space at the arena's end, without taking it: for output whose size is known only once written (the
+ * run lists). A vfi_arena_alloc that follows returns this same pointer. *bytes: how much is free. */
+void *vfi_arena_top(vf_arena_t *arena, size_t *bytes);
+
 /* Give back everything allocated after `mark` (a value of arena->used taken earlier). */
 void vfi_arena_rewind(vf_arena_t *arena, size_t mark);
 

@@ -61,6 +61,18 @@ vf_status_t vfi_classify(vfi_classify_t *cls, const vf_tf_t *tf)
     }
     cls->visible_before[n] = visible;
 
+    /* The entries [lo, hi] can touch are first_of_scalar[lo] .. end_of_scalar[hi] - 1; some is visible when
+     * visible_before differs across them. The threshold never falls as lo rises, so one sweep finds them all. */
+    uint32_t hi = 0;
+    for (uint32_t lo = 0; lo < 256; lo++) {
+        const uint16_t below = cls->visible_before[cls->first_of_scalar[lo]];
+        if (hi < lo)
+            hi = lo;
+        while (hi < 256 && cls->visible_before[cls->end_of_scalar[hi]] == below)
+            hi++;
+        cls->visible_from[lo] = (uint16_t)hi;
+    }
+
     /* Interval m (entries m, m + 1): w = (2 t0 c0 + t0 c1 + t1 c0 + 2 t1 c1) / (3 (t0 + t1)), the mean colour
      * weighted by the linear extinction; tau in Q.24 here keeps the sums of products below 2^63. */
     for (uint32_t m = 0; m + 1 < n; m++) {

@@ -20,6 +20,9 @@ typedef struct vfi_classify {
      * whole x has weight 0). */
     uint16_t first_of_scalar[256];
     uint16_t end_of_scalar[256];
+    /* Whether [lo, hi] touches a visible entry only grows with hi (and as lo falls), so one threshold per lo says
+     * it all: the smallest hi >= lo for which it does, 256 when none. One load per cell in the run encoder. */
+    uint16_t visible_from[256];
 } vfi_classify_t;
 
 /* Bytes vfi_classify_alloc takes from an arena for n entries. */
@@ -43,7 +46,7 @@ static inline uint32_t vfi_entry_of_sample(const vfi_classify_t *cls, uint64_t s
 /* Whether a segment whose samples lie between 8-bit scalars lo and hi can touch a visible entry (tau > 0). */
 static inline bool vfi_range_visible(const vfi_classify_t *cls, uint32_t scalar_lo, uint32_t scalar_hi)
 {
-    return cls->visible_before[cls->end_of_scalar[scalar_hi]] != cls->visible_before[cls->first_of_scalar[scalar_lo]];
+    return scalar_hi >= cls->visible_from[scalar_lo];
 }
 
 /* Table position of a sample in Q8.32 for a bilinear lookup: x = s (N - 1) / 255 in Q.16, floor(x 2^16) exactly

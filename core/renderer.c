@@ -296,23 +296,26 @@ static vf_status_t encode_runs(vf_renderer_t *r)
     vf_arena_t *arena = r->arena;
     r->have_runs = false;
     vfi_arena_rewind(arena, r->runs_mark);
-    size_t values[3], total = 0;
+    /* One pass per axis, straight into the arena's free space; only when that is too small are the remaining
+     * axes counted, to say how big an arena would do (vf_renderer_needed_bytes). */
+    size_t total = 0;
+    bool short_of_memory = false;
     for (int a = 0; a < 3; a++) {
-        vfi_runs_t counting = {NULL, NULL, 0}; /* no pairs array: count only */
-        values[a] = vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, &counting);
-        total += vfi_runs_index_bytes(&r->layout[a]) + vfi_arena_block(sizeof(uint16_t) * values[a]);
+        vfi_runs_t *runs = &r->runs[a];
+        size_t index_bytes = vfi_runs_index_bytes(&r->layout[a]), free_bytes = 0, values;
+        runs->row_start = short_of_memory ? NULL : vfi_arena_alloc(arena, index_bytes);
+        runs->pairs = runs->row_start ? vfi_arena_top(arena, &free_bytes) : NULL;
+        values = vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, runs, free_bytes / sizeof(uint16_t));
+        /* at least one value, so that an all-invisible volume still has a non-NULL array */
+        size_t pair_bytes = vfi_arena_block(sizeof(uint16_t) * (values ? values : 1));
+        total += index_bytes + pair_bytes;
+        if (!runs->pairs || pair_bytes > free_bytes || !vfi_arena_alloc(arena, pair_bytes))
+            short_of_memory = true;
     }
     r->needed = r->runs_mark + total + VFI_ALIGN;
     r->memory.runs = total;
-    for (int a = 0; a < 3; a++) {
-        vfi_runs_t *runs = &r->runs[a];
-        runs->row_start = vfi_arena_alloc(arena, vfi_runs_index_bytes(&r->layout[a]));
-        /* at least one value, so that an all-invisible volume still has a non-NULL array to fill */
-        runs->pairs = vfi_arena_alloc(arena, sizeof(uint16_t) * (values[a] ? values[a] : 1));
-        if (!runs->row_start || !runs->pairs)
-            return VF_ERR_NOMEM;
-        vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, runs);
-    }
+    if (short_of_memory)
+        return VF_ERR_NOMEM;
     r->have_runs = true;
     return VF_OK;
 }

@@ -23,9 +23,11 @@ typedef struct vfi_runs {
 
 size_t vfi_runs_index_bytes(const vfi_layout_t *layout);
 
-/* Count the uint16 values the pairs need (count only: pairs may be NULL), or fill runs->pairs. */
+/* Encode in one pass: the pairs go into runs->pairs while they fit in `capacity` uint16 values, the row index
+ * into runs->row_start (when not NULL). Returns the values the whole encoding needs; more than capacity means
+ * it did not fit (the pairs are then incomplete). pairs NULL: count only. */
 size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *layout, const vfi_classify_t *cls,
-                       vfi_runs_t *runs);
+                       vfi_runs_t *runs, size_t capacity);
 
 /* The pairs of cell row j of slab k, as [begin, end). */
 static inline const uint16_t *vfi_runs_row(const vfi_runs_t *runs, uint32_t k, uint32_t j, const uint16_t **end)

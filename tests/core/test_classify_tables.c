@@ -210,6 +210,21 @@ static void check_classification(const vfi_classify_t *cls, const vf_tf_t *tf)
         all += cls->tau_q28[e] > 0;
     if (cls->visible_before[cls->n] != all)
         check_fail(__FILE__, __LINE__, "visible_before[n]");
+    /* visible_from[lo]: the smallest hi >= lo whose range [lo, hi] touches an entry with tau > 0 (brute force) */
+    for (uint32_t lo = 0; lo < 256; lo++) {
+        uint32_t want = 256;
+        for (uint32_t hi = lo; hi < 256 && want == 256; hi++)
+            for (uint32_t e = cls->first_of_scalar[lo]; e < cls->end_of_scalar[hi]; e++)
+                if (cls->tau_q28[e] > 0) {
+                    want = hi;
+                    break;
+                }
+        if (cls->visible_from[lo] != want) {
+            check_fail(__FILE__, __LINE__, "visible_from[%u] = %u, want %u (n %u)", lo, cls->visible_from[lo], want,
+                       cls->n);
+            return;
+        }
+    }
 }
 
 static void classify_random(void)
