@@ -9,5 +9,6 @@ int sim_cmd_bench(int argc, char **argv);
 int sim_cmd_tables(int argc, char **argv);
 int sim_cmd_ray(int argc, char **argv);
 int sim_cmd_study(int argc, char **argv);
+int sim_cmd_diff(int argc, char **argv);
 
 #endif

@@ -14,7 +14,8 @@ static const char usage[] =
     "  bench     time 90 frames of a 180-degree turn (Schulze et al.'s protocol)\n"
     "  tables    build a pre-integrated table with each builder: time, error, picture\n"
     "  ray       one ray's signal and its order 0, 1, 2 reconstructions (El Hajjar et al.): CSV, plot\n"
-    "  study     the fixed-point precision study: errors, plots, report.md\n";
+    "  study     the fixed-point precision study: errors, plots, report.md\n"
+    "  diff      two PNG images compared pixel by pixel\n";
 
 int main(int argc, char **argv)
 {
@@ -35,6 +36,8 @@ int main(int argc, char **argv)
         return sim_cmd_ray(argc - 2, argv + 2);
     if (strcmp(cmd, "study") == 0)
         return sim_cmd_study(argc - 2, argv + 2);
-    fprintf(stderr, "volfix-sim: unknown command '%s' (expected render, compare, bench, tables, ray or study; see --help)\n", cmd);
+    if (strcmp(cmd, "diff") == 0)
+        return sim_cmd_diff(argc - 2, argv + 2);
+    fprintf(stderr, "volfix-sim: unknown command '%s' (expected render, compare, bench, tables, ray, study or diff; see --help)\n", cmd);
     return 2;
 }

@@ -16,6 +16,9 @@ const char sim_scene_help[] =
     "  --format F           rgb888 (default), rgb565 or xrgb8888\n"
     "  --window LO,HI       data values mapped to the transfer function's 0..1 (default: 0.5 and 99.5\n"
     "                       percentiles for 16-bit data, the full range for 8-bit)\n"
+    "  --tf-move S,K        move the transfer function up by S windows and stretch it K times about the\n"
+    "                       window's centre, as the viewer's level and width knobs do (default 0,1)\n"
+    "  --downsample N       average N x N x N blocks first (the viewer's preview while a knob turns)\n"
     "  --table-size N       transfer-function table entries, 2..1024 (default 256)\n"
     "  --table-bits B       16 (default) or 8 bits per table value (half the memory)\n"
     "  --lookup L           nearest (default) or bilinear table lookup\n"
@@ -74,6 +77,7 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
     o->format = VF_FORMAT_RGB888;
     o->threads = 1;
     o->frames = 90;
+    o->tf_scale = 1;
     char err[VFP_ERR_LEN];
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -90,6 +94,18 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
             o->tf_file = v;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--window") == 0 && v) {
             o->window = v;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--tf-move") == 0) {
+            double m[2];
+            if (!v || parse_doubles(v, m, 2, 2) != 2 || !(m[1] > 0) || !(m[0] > -100 && m[0] < 100) ||
+                !(m[1] < 1000))
+                return bad(a, v, "SHIFT,SCALE: a shift in windows (-100..100) and a scale above 0");
+            o->tf_shift = m[0];
+            o->tf_scale = m[1];
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--downsample") == 0) {
+            double n;
+            if (!v || parse_doubles(v, &n, 1, 1) < 0 || n != (int)n || n < 1 || n > 8)
+                return bad(a, v, "an integer from 1 to 8");
+            o->load.downsample = (int)n;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--mode") == 0) {
             if (sim_parse_mode(v, &o->params.mode))
                 return bad(a, v, "point, preint1 or preclass");

@@ -11,6 +11,7 @@ typedef struct sim_opts {
     const char *preset;        /* --preset NAME (default ramp) */
     const char *tf_file;       /* --tf FILE */
     const char *window;        /* --window LO,HI in data units */
+    double tf_shift, tf_scale; /* --tf-move SHIFT,SCALE (vfp_tf_move; default 0,1) */
     vf_params_t params;        /* --mode --table-size */
     double azimuth, elevation, roll; /* --view AZ,EL[,ROLL] degrees */
     double zoom;               /* --zoom */

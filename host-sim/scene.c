@@ -35,6 +35,8 @@ int sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen
         vfp_volume_free(&s->vol);
         return 2;
     }
+    if (o->tf_shift != 0 || o->tf_scale != 1)
+        vfp_tf_move(&s->tf, &s->vol, s->window, o->tf_shift, o->tf_scale);
     s->npoints = vfp_tf_to_core(&s->tf, &s->vol, s->window, s->points);
     s->params = o->params;
     s->view = sim_view(o->azimuth, o->elevation, o->roll, o->zoom);
@@ -53,18 +55,12 @@ void sim_scene_free(sim_scene_t *s)
 
 int sim_image_alloc(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
 {
-    img->width = width;
-    img->height = height;
-    img->format = format;
-    img->stride = width * vf_format_bytes(format);
-    img->pixels = calloc(height, img->stride);
-    return img->pixels ? 0 : 2;
+    return vfp_image_alloc(img, width, height, format);
 }
 
 void sim_image_free(vf_image_t *img)
 {
-    free(img->pixels);
-    img->pixels = NULL;
+    vfp_image_free(img);
 }
 
 int sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, char *err, size_t errlen)

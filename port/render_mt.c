@@ -25,7 +25,7 @@ typedef struct worker {
 } worker_t;
 
 static int create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t errlen);
-static int apply(vfp_render_t *r, char *err, size_t errlen);
+static int apply(vfp_render_t *r, int window_changed, char *err, size_t errlen);
 static void *run_bands(void *arg);
 static vf_status_t spread(vfp_render_t *r, band_work_t *work);
 
@@ -34,6 +34,22 @@ double vfp_now_ms(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+int vfp_image_alloc(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
+{
+    img->width = width;
+    img->height = height;
+    img->format = format;
+    img->stride = width * vf_format_bytes(format);
+    img->pixels = calloc(height, img->stride);
+    return img->pixels ? 0 : 2;
+}
+
+void vfp_image_free(vf_image_t *img)
+{
+    free(img->pixels);
+    img->pixels = NULL;
 }
 
 int vfp_render_open(vfp_render_t *r, const vf_params_t *params, const vf_volume_t *volume, int threads, char *err,
@@ -60,7 +76,7 @@ int vfp_render_set_window(vfp_render_t *r, vf_window_t window, char *err, size_t
 {
     r->window = window;
     r->have_window = 1;
-    return apply(r, err, errlen);
+    return apply(r, 1, err, errlen);
 }
 
 int vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t count, char *err, size_t errlen)
@@ -73,7 +89,7 @@ int vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t cou
     r->tf.points = r->tf_points;
     r->tf.count = count;
     r->have_tf = 1;
-    return apply(r, err, errlen);
+    return apply(r, 0, err, errlen);
 }
 
 int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen)
@@ -124,6 +140,7 @@ static int create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t er
     }
     vf_arena_init(&r->arena, r->arena_buf, arena_bytes);
     vf_status_t s = vf_renderer_create(&r->core, &r->params, r->volume, &r->arena);
+    r->core_fresh = 1; /* it has neither window nor transfer function yet */
     if (s != VF_OK) {
         snprintf(err, errlen, "cannot create the renderer: %s", vf_status_text(s));
         return 2;
@@ -141,17 +158,20 @@ static int create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t er
     return 0;
 }
 
-/* Give the core the current window and transfer function, growing the arena once if the run lists need it. */
-static int apply(vfp_render_t *r, char *err, size_t errlen)
+/* Give the core what changed (the window, or the transfer function), growing the arena once if the run lists
+ * need it; a new core gets both. Each core call re-encodes the runs, so a transfer-function change must not
+ * set the window again: that would rebuild the slices and encode twice (the viewer's level knob felt it). */
+static int apply(vfp_render_t *r, int window_changed, char *err, size_t errlen)
 {
     double t0 = vfp_now_ms();
     for (int attempt = 0; attempt < 2; attempt++) {
         vf_status_t s = VF_OK;
-        if (r->have_window)
+        if (r->have_window && (window_changed || r->core_fresh))
             s = vf_renderer_set_window(r->core, r->window);
-        if (s == VF_OK && r->have_tf)
+        if (s == VF_OK && r->have_tf && (!window_changed || r->core_fresh))
             s = vf_renderer_set_tf(r->core, &r->tf);
         if (s == VF_OK) {
+            r->core_fresh = 0;
             r->ms_classify = vfp_now_ms() - t0;
             return 0;
         }

@@ -19,6 +19,7 @@ typedef struct vfp_render {
     unsigned char *arena_buf;
     vf_arena_t arena;
     int have_window, have_tf;
+    int core_fresh;                   /* the core has not had the window and transfer function yet */
     vf_window_t window;
     vf_tf_point_t tf_points[VF_MAX_TF_POINTS];
     vf_tf_t tf;
@@ -37,6 +38,11 @@ int vfp_render_set_window(vfp_render_t *r, vf_window_t window, char *err, size_t
 int vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t count, char *err, size_t errlen);
 int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen);
 void vfp_render_close(vfp_render_t *r);
+
+/* An image of this size and format in calloc'd memory, rows packed; 0, or 2 when out of memory (pixels NULL).
+ * vfp_image_free gives it back and leaves pixels NULL (safe to call again). */
+int vfp_image_alloc(vf_image_t *image, uint32_t width, uint32_t height, vf_format_t format);
+void vfp_image_free(vf_image_t *image);
 
 /* Milliseconds on the monotonic clock. */
 double vfp_now_ms(void);

@@ -189,6 +189,19 @@ uint32_t vfp_tf_to_core(const vfp_tf_t *tf, const vfp_volume_t *vol, vf_window_t
     return (uint32_t)k;
 }
 
+void vfp_tf_move(vfp_tf_t *tf, const vfp_volume_t *vol, vf_window_t window, double shift, double scale)
+{
+    double centre = 0.5, width = 1;
+    if (tf->data_units) {
+        double slope = vol && vol->slope != 0 ? vol->slope : 1, inter = vol ? vol->inter : 0;
+        double lo = window.lo * slope + inter, hi = window.hi * slope + inter;
+        centre = (lo + hi) / 2;
+        width = hi - lo;
+    }
+    for (int i = 0; i < tf->count; i++)
+        tf->points[i].s = centre + shift * width + (tf->points[i].s - centre) * scale;
+}
+
 /* The function at x (right-continuous at steps), channel 0..3 = r, g, b, a. */
 static double eval(const vfp_tf_point_t *p, int count, double x, int c)
 {

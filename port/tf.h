@@ -45,6 +45,13 @@ int vfp_tf_preset(vfp_tf_t *tf, const char *name, char *err, size_t errlen);
 extern const char *const vfp_tf_preset_names[];
 const char *vfp_tf_preset_about(const char *name);
 
+/* Move and stretch a transfer function as a window/level control does, keeping the data's window (so the
+ * renderer reclassifies but does not rebuild its slices). In the window's normalised units u (0 at its bottom,
+ * 1 at its top) a point at u moves to 0.5 + shift + (u - 0.5) * scale: shift 0.1 moves the function up by a
+ * tenth of the window, scale 2 makes it twice as wide about the window's centre. A function in data units moves
+ * by the same amounts of the window (converted with the volume's slope and intercept). scale must be > 0. */
+void vfp_tf_move(vfp_tf_t *tf, const vfp_volume_t *vol, vf_window_t window, double shift, double scale);
+
 /* Control points for the core: scalars mapped through the window to 0..255 (clipped there, with points added
  * at the window's edges so that the shape inside is kept), values to unorm16. out holds VF_MAX_TF_POINTS.
  * Returns the number of points (at least 1). */

@@ -54,6 +54,8 @@ int vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *
     snprintf(vol->name, sizeof vol->name, "%s", spec);
 
     int rc = load(vol, spec, opts, err, errlen);
+    if (rc == 0 && opts && opts->downsample > 1)
+        rc = vfpi_downsample(vol, opts->downsample, err, errlen);
     if (rc == 0)
         rc = finish(vol, opts, err, errlen);
     if (rc) {
@@ -217,6 +219,24 @@ static int load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts
 }
 
 /* What every reader's volume needs after reading: the spacing override, Q16.16 spacing, raw range, voxels. */
+int vfp_volume_downsampled(vfp_volume_t *dst, const vfp_volume_t *src, int factor, char *err, size_t errlen)
+{
+    memset(dst, 0, sizeof *dst);
+    size_t bytes = (size_t)src->core.dims[0] * src->core.dims[1] * src->core.dims[2] * vfpi_type_bytes(src->core.type);
+    *dst = *src;
+    dst->data = malloc(bytes);
+    if (!dst->data) {
+        memset(dst, 0, sizeof *dst);
+        return vfpi_fail(err, errlen, src->name, 0, "out of memory for a downsampled copy (%zu bytes)", bytes);
+    }
+    memcpy(dst->data, src->data, bytes);
+    if (vfpi_downsample(dst, factor, err, errlen) || finish(dst, NULL, err, errlen)) {
+        vfp_volume_free(dst);
+        return 2;
+    }
+    return 0;
+}
+
 static int finish(vfp_volume_t *vol, const vfp_load_opts_t *opts, char *err, size_t errlen)
 {
     if (opts && opts->have_spacing) {
@@ -225,7 +245,7 @@ static int finish(vfp_volume_t *vol, const vfp_load_opts_t *opts, char *err, siz
         for (int a = 0; a < 3; a++) {
             if (vfpi_check_spacing(opts->spacing[a], a, name, 0, err, errlen))
                 return 2;
-            vol->spacing[a] = opts->spacing[a];
+            vol->spacing[a] = opts->spacing[a] * (opts->downsample > 1 ? opts->downsample : 1);
         }
     }
     /* The core needs only the ratios: relative to the smallest spacing, Q16.16 keeps full precision whatever

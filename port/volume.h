@@ -37,6 +37,7 @@ typedef struct vfp_load_opts {
     int big_endian;       /* --big-endian */
     int have_spacing;     /* --spacing X,Y,Z given (also overrides a file's own spacing) */
     double spacing[3];
+    int downsample;       /* --downsample N: average N^3 blocks, spacing times N (0 or 1: as stored) */
 } vfp_load_opts_t;
 
 /* Load by name: a file path (format from its contents and extension: .nhdr/.nrrd, .nii/.nii.gz, .den, else raw,
@@ -44,6 +45,10 @@ typedef struct vfp_load_opts {
  * sphere or cube and N the size of each side (2..1024). Returns 0, or 2 with `err` filled. */
 int vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err, size_t errlen);
 void vfp_volume_free(vfp_volume_t *vol);
+
+/* A copy of src averaged over factor^3 blocks (factor 1..8), spacing times factor: what --downsample loads.
+ * Returns 0, or 2 with err (dst then holds nothing to free). */
+int vfp_volume_downsampled(vfp_volume_t *dst, const vfp_volume_t *src, int factor, char *err, size_t errlen);
 
 /* The default window: the full range 0..255 for 8-bit data, otherwise the 0.5 and 99.5 percentiles of the raw
  * values (never lo == hi). */

@@ -70,6 +70,11 @@ int vfpi_load_den(vfp_volume_t *vol, const char *path, char *err, size_t errlen)
 int vfpi_load_raw(vfp_volume_t *vol, const char *path, const vfp_load_opts_t *opts, char *err, size_t errlen);
 int vfpi_load_phantom(vfp_volume_t *vol, const char *spec, char *err, size_t errlen);
 
+/* Replace the volume by its box average over factor^3 blocks (1..VFPI_MAX_DOWNSAMPLE), spacing times factor
+ * (volume_downsample.c). Before volume.c's finishing step, which derives spacing_q16 and the range. */
+#define VFPI_MAX_DOWNSAMPLE 8
+int vfpi_downsample(vfp_volume_t *vol, int factor, char *err, size_t errlen);
+
 /* Recognisers for dispatch by content (head: the first bytes of the file, decompressed when gzip). */
 int vfpi_is_nifti(const unsigned char *head, size_t n);
 int vfpi_is_den(const unsigned char *head, size_t n, uint64_t file_bytes);
