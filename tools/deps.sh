@@ -1,13 +1,16 @@
 #!/bin/sh
 # Install the Debian packages that `make run` or `make test` need, when they are missing.
 # As root it runs apt-get itself; otherwise it prints the one command to run and fails.
-# Usage: tools/deps.sh run|test
+# Usage: tools/deps.sh run|test|hw
 set -u
 for_what=${1:-run}
 
-need="gcc make pkg-config zlib1g-dev libpng-dev gnuplot-nox"
+# the core and volfix-sim; the viewer's backends (displays, knobs) come with their libraries when present
+need="gcc make pkg-config zlib1g-dev libpng-dev gnuplot-nox libdrm-dev libusb-1.0-0-dev liblz4-dev libsdl2-dev libgpiod-dev"
 case "$for_what" in
-  test) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf valgrind" ;;
+  test) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf valgrind umockdev libumockdev-dev xvfb xauth xdotool imagemagick" ;;
+  # make test-hw: a Debian kernel in qemu (TCG), an initramfs from busybox, the gpio-sim module built out of tree
+  hw) need="$need qemu-system-x86 busybox-static cpio kmod xz-utils gzip gcc-12 make binutils" ;;
 esac
 
 missing=""
