@@ -37,3 +37,26 @@ if command -v valgrind >/dev/null; then
 else
     echo "(valgrind not installed: no instruction counts)"
 fi
+
+# The viewer's input-to-frame latency: a scripted session on the headless board (240x240 RGB565 PNG frames)
+# while the level knob moves the transfer function every 40 ms (tests/viewer/level.script), with the
+# half-resolution preview (the default) and without it (--preview 1: every frame from the full volume).
+viewer=${BUILD:-build}/volfix
+if [ -x "$viewer" ]; then
+    v=$(echo $volumes | cut -d' ' -f1)
+    echo
+    echo "== viewer: input-to-frame latency, $(basename "$v") at 240x240, transfer function moving (level.script)"
+    tmp=$(mktemp -d)
+    for preview in 2 1; do
+        "$viewer" --board boards/host-headless.board "$v" --script tests/viewer/level.script --device "$tmp/f" \
+            --log "$tmp/log" --preview $preview | tail -n 1 | sed "s/^volfix:/preview $preview:/"
+        # per frame: render (reclassification included) and present (PNG written) times, medians
+        for col in 5 8; do
+            awk -v c=$col -v all=$((preview == 1)) '$3 == "preview" || all { print $c }' "$tmp/log" | sort -n |
+                awk '{ x[NR] = $1 } END { if (NR) printf "%s %.1f", NR, x[int((NR + 1) / 2)] }'
+            echo
+        done | { read -r n render; read -r _ present; echo "    $n frames: render median $render ms (reclassifying included), present median $present ms"; }
+        rm -rf "$tmp/f"
+    done
+    rm -rf "$tmp"
+fi

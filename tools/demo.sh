@@ -27,4 +27,14 @@ if [ -d "$data" ]; then
 else
     echo "  ($data not found: the shared CT volumes are skipped)"
 fi
-echo "Open the PNG files in out/. Try: $sim render --help"
+viewer=${BUILD:-build}/volfix
+if [ -x "$viewer" ]; then
+    vol=phantom:marschner-lobb:96
+    [ -d "$data" ] && vol="$data/engine.nhdr"
+    echo "The viewer on the headless board, knobs played from boards/host-headless.script (3 s):"
+    rm -rf out/frames
+    "$viewer" --board boards/host-headless.board "$vol" --device out/frames --overlay | sed 's/^/  /' || exit 1
+    echo "  frames in out/frames/ (with the frame-time overlay)"
+fi
+echo "Open the PNG files in out/. Try: $sim render --help, $viewer --help"
+echo "On a desktop: $viewer --board boards/host-sdl.board phantom:marschner-lobb:96 (arrow keys turn it)"

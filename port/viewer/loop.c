@@ -1,0 +1,470 @@
+/* loop.c: the viewer's event loop (see viewer.h). */
+#include "viewer.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "overlay.h"
+
+#define MAX_EVENTS 64
+#define MAX_PENDING 4096        /* input events waiting for their frame, for the latency figures */
+#define REOPEN_INTERVAL_MS 1000 /* how often a lost display is looked for */
+
+typedef struct loop {
+    viewer_t *v;
+    vfp_display_t display;
+    int display_open;
+    uint64_t reopen_at;           /* when to look for a lost display again */
+    vfp_input_t input;
+    int input_open;
+    vf_image_t clean, frame;      /* the last picture rendered, and it with the overlay */
+    viewer_renderer_t fast;       /* the main thread's renderer: the preview volume (or the full one) */
+    viewer_worker_t worker;
+    int have_worker;
+    uint64_t gen;                 /* bumped by every change of the controls */
+    uint64_t shown_gen;           /* what the display shows */
+    int shown_full;
+    int clean_full;               /* clean holds a full-quality picture */
+    double clean_ms;              /* and how long it took */
+    uint64_t last_input;          /* when the controls last changed (0: never) */
+    int need_fast, need_redraw, quitting;
+    uint64_t pending[MAX_PENDING]; /* times of the changes not yet on the display */
+    int npending;
+    /* the session's figures */
+    uint64_t started;
+    unsigned frames, previews, fulls, dropped_fulls;
+    double *latency;              /* ms, one per input event that changed something */
+    size_t nlatency, cap_latency;
+} loop_t;
+
+static int signal_pipe[2] = {-1, -1}; /* the handler's way into poll: the one piece of process-wide state */
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    int saved = errno;
+    char byte = 1;
+    if (write(signal_pipe[1], &byte, 1) < 0) {
+        /* a full pipe already holds a wake-up */
+    }
+    errno = saved;
+}
+
+static uint64_t now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+}
+
+static void drain(int fd)
+{
+    char buf[64];
+    while (read(fd, buf, sizeof buf) > 0)
+        ;
+}
+
+static int set_nonblocking(int fd)
+{
+    int flags = fcntl(fd, F_GETFL);
+    return flags < 0 ? -1 : fcntl(fd, F_SETFL, flags | O_NONBLOCK);
+}
+
+static const char *format_name(vf_format_t f)
+{
+    return f == VF_FORMAT_RGB565 ? "rgb565" : f == VF_FORMAT_XRGB8888 ? "xrgb8888" : "rgb888";
+}
+
+static double wrap360(double d)
+{
+    d = fmod(d, 360.0);
+    return d < 0 ? d + 360.0 : d;
+}
+
+/* One line of the log: the frame, and the volfix-sim render options that reproduce its pixels. */
+static void log_frame(loop_t *L, int full, double ms, double present_ms, double latency_ms)
+{
+    viewer_t *v = L->v;
+    if (!v->log)
+        return;
+    const viewer_scene_t *s = &v->scene;
+    const vfp_controls_t *c = &v->controls;
+    double slope = s->full.slope != 0 ? s->full.slope : 1, inter = s->full.inter;
+    fprintf(v->log, "frame %u %s render %.2f ms present %.2f ms latency ", L->frames - 1, full ? "full" : "preview",
+            ms, present_ms);
+    if (latency_ms >= 0)
+        fprintf(v->log, "%.2f ms", latency_ms);
+    else
+        fprintf(v->log, "-");
+    fprintf(v->log, ": --view %.17g,%.17g,%.17g --zoom %.17g --tf-move %.17g,%.17g %s --mode %s --window %.17g,%.17g "
+                    "--size %ux%u --format %s",
+            c->azimuth, c->elevation, wrap360(c->roll - v->board.rotation), c->zoom, c->tf_shift, c->tf_scale,
+            s->tf_args[c->preset], vf_mode_name(c->mode), s->window.lo * slope + inter, s->window.hi * slope + inter,
+            L->frame.width, L->frame.height, format_name(L->frame.format));
+    if (!full && s->preview_factor > 1)
+        fprintf(v->log, " --downsample %d", s->preview_factor);
+    fputc('\n', v->log);
+    fflush(v->log);
+}
+
+static void record_latencies(loop_t *L, uint64_t now, double *worst)
+{
+    *worst = -1;
+    for (int i = 0; i < L->npending; i++) {
+        double ms = (double)(now - L->pending[i]) / 1e6;
+        *worst = ms > *worst ? ms : *worst;
+        if (L->nlatency == L->cap_latency) {
+            size_t cap = L->cap_latency ? 2 * L->cap_latency : 1024;
+            double *grown = realloc(L->latency, cap * sizeof *grown);
+            if (!grown)
+                break; /* the figures lose some events; the viewer goes on */
+            L->latency = grown;
+            L->cap_latency = cap;
+        }
+        L->latency[L->nlatency++] = ms;
+    }
+    L->npending = 0;
+}
+
+static void display_lost(loop_t *L, const char *why)
+{
+    fprintf(stderr, "volfix: display %s lost (%s): looking for it every %d ms\n", L->v->board.display, why,
+            REOPEN_INTERVAL_MS);
+    L->v->display_ops->close(&L->display);
+    L->display_open = 0;
+    L->reopen_at = now_ns() + (uint64_t)REOPEN_INTERVAL_MS * 1000000u;
+}
+
+/* Draw the overlay on a copy of the clean picture and show it. Returns 0, or 2 after printing an error. */
+static int present(loop_t *L, int full, double ms)
+{
+    viewer_t *v = L->v;
+    memcpy(L->frame.pixels, L->clean.pixels, (size_t)L->clean.stride * L->clean.height);
+    if (v->controls.overlay) {
+        int rot = v->board.rotation, upright_w = rot % 180 ? (int)L->frame.height : (int)L->frame.width;
+        int scale = upright_w >= 480 ? 2 : 1;
+        char line1[64], line2[96];
+        snprintf(line1, sizeof line1, "%s %.1f MS", full ? "FULL" : "PREVIEW", ms);
+        snprintf(line2, sizeof line2, "%s %s", vf_mode_name(v->controls.mode),
+                 v->scene.tfs[v->controls.preset].name);
+        vfp_overlay_text(&L->frame, rot, 2 * scale, 2 * scale, scale, line1);
+        vfp_overlay_text(&L->frame, rot, 2 * scale, 2 * scale + vfp_overlay_height(scale), scale, line2);
+    }
+    char err[VIEWER_ERR_LEN] = "";
+    uint64_t t0 = now_ns();
+    int rc = v->display_ops->present(&L->display, 0, 0, L->frame.width, L->frame.height, L->frame.pixels,
+                                     L->frame.stride, err, sizeof err);
+    if (rc == VFP_DISPLAY_LOST) {
+        display_lost(L, err[0] ? err : "gone");
+        return 0;
+    }
+    if (rc) {
+        fprintf(stderr, "volfix: %s\n", err);
+        return 2;
+    }
+    uint64_t now = now_ns();
+    double worst;
+    record_latencies(L, now, &worst);
+    L->frames++;
+    full ? L->fulls++ : L->previews++;
+    L->shown_gen = L->gen;
+    L->shown_full = full;
+    log_frame(L, full, ms, (double)(now - t0) / 1e6, worst);
+    return 0;
+}
+
+/* Open the display and size the pictures to it. Returns 0, or 2 with err. */
+static int open_display(loop_t *L, char *err, size_t errlen)
+{
+    viewer_t *v = L->v;
+    memset(&L->display, 0, sizeof L->display);
+    L->display.ops = v->display_ops;
+    if (v->display_ops->open(&L->display, &v->board, err, errlen))
+        return 2;
+    L->display_open = 1;
+    if (L->frame.pixels && L->frame.width == L->display.width && L->frame.height == L->display.height &&
+        L->frame.format == L->display.format)
+        return 0;
+    vfp_image_free(&L->clean);
+    vfp_image_free(&L->frame);
+    if (vfp_image_alloc(&L->clean, L->display.width, L->display.height, L->display.format) ||
+        vfp_image_alloc(&L->frame, L->display.width, L->display.height, L->display.format)) {
+        snprintf(err, errlen, "out of memory for %ux%u frames", L->display.width, L->display.height);
+        return 2;
+    }
+    return 0;
+}
+
+static int render_fast(loop_t *L)
+{
+    viewer_t *v = L->v;
+    const vfp_volume_t *vol = v->scene.preview_factor > 1 ? &v->scene.preview : &v->scene.full;
+    char err[VIEWER_ERR_LEN];
+    double t0 = vfp_now_ms();
+    if (viewer_sync(&L->fast, &v->scene, vol, &v->controls, err, sizeof err) ||
+        viewer_render(&L->fast, &v->controls, v->board.rotation, &L->clean, err, sizeof err)) {
+        fprintf(stderr, "volfix: %s\n", err);
+        return 2;
+    }
+    L->clean_full = v->scene.preview_factor == 1;
+    L->clean_ms = vfp_now_ms() - t0;
+    L->need_fast = L->need_redraw = 0;
+    return present(L, L->clean_full, L->clean_ms);
+}
+
+/* Take the worker's frame if it is of the current controls. Returns 0, or 2 after printing its error. */
+static int take_full(loop_t *L)
+{
+    viewer_worker_t *w = &L->worker;
+    int status = 0, show = 0;
+    double ms = 0;
+    pthread_mutex_lock(&w->lock);
+    if (w->have_result) {
+        w->have_result = 0;
+        if (w->result_status) {
+            fprintf(stderr, "volfix: %s\n", w->result_err);
+            status = 2;
+        } else if (w->result_gen == L->gen && L->display_open && w->image.width == L->clean.width &&
+                   w->image.height == L->clean.height && w->image.format == L->clean.format) {
+            memcpy(L->clean.pixels, w->image.pixels, (size_t)w->image.stride * w->image.height);
+            ms = w->result_ms;
+            show = 1;
+        } else {
+            L->dropped_fulls++;
+        }
+    }
+    pthread_mutex_unlock(&w->lock);
+    if (status || !show)
+        return status;
+    L->clean_full = 1;
+    L->clean_ms = ms;
+    return present(L, 1, ms);
+}
+
+static int worker_free(loop_t *L)
+{
+    pthread_mutex_lock(&L->worker.lock);
+    int free_ = !L->worker.busy && !L->worker.have_request && !L->worker.have_result;
+    pthread_mutex_unlock(&L->worker.lock);
+    return free_;
+}
+
+/* Does the display still lack the full-quality picture of the current controls? */
+static int full_wanted(const loop_t *L)
+{
+    return L->have_worker && L->display_open && !(L->shown_full && L->shown_gen == L->gen);
+}
+
+static void apply_events(loop_t *L, const vfp_event_t *ev, int n)
+{
+    viewer_t *v = L->v;
+    for (int i = 0; i < n; i++) {
+        unsigned changed = vfp_controls_apply(&v->controls, &v->home, &v->board, &ev[i]);
+        if (changed & VFP_CHANGED_QUIT) {
+            L->quitting = 1;
+            continue;
+        }
+        if (!changed)
+            continue;
+        if (changed & (VFP_CHANGED_VIEW | VFP_CHANGED_TF | VFP_CHANGED_MODE)) {
+            L->gen++;
+            atomic_store(&L->worker.latest, L->gen);
+            L->need_fast = 1;
+        }
+        L->need_redraw = 1; /* the overlay alone, or with the rest */
+        L->last_input = now_ns();
+        if (L->npending < MAX_PENDING)
+            L->pending[L->npending++] = ev[i].time_ns ? ev[i].time_ns : L->last_input;
+    }
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static void summary(loop_t *L)
+{
+    double secs = (double)(now_ns() - L->started) / 1e9;
+    printf("volfix: %u frames (%u previews, %u full quality) in %.2f s", L->frames, L->previews, L->fulls, secs);
+    if (L->nlatency) {
+        qsort(L->latency, L->nlatency, sizeof *L->latency, cmp_double);
+        size_t p95 = (L->nlatency * 95 + 99) / 100;
+        printf("; input-to-frame latency over %zu inputs: median %.1f ms, 95th percentile %.1f ms, worst %.1f ms",
+               L->nlatency, L->latency[L->nlatency / 2], L->latency[p95 ? p95 - 1 : 0], L->latency[L->nlatency - 1]);
+    }
+    printf("\n");
+}
+
+static int setup(loop_t *L, char *err, size_t errlen)
+{
+    viewer_t *v = L->v;
+    if (pipe(signal_pipe) || set_nonblocking(signal_pipe[0]) || set_nonblocking(signal_pipe[1])) {
+        snprintf(err, errlen, "cannot make a pipe for signals: %s", strerror(errno));
+        return 2;
+    }
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    signal(SIGPIPE, SIG_IGN); /* a display over a socket or pipe that went away is an error, not a death */
+
+    L->input.ops = v->input_ops;
+    if (v->input_ops->open(&L->input, &v->board, v->script, err, errlen))
+        return 2;
+    L->input_open = 1;
+    if (open_display(L, err, errlen))
+        return 2;
+    if (v->scene.preview_factor > 1) {
+        if (viewer_worker_start(&L->worker, &v->scene, v->board.rotation, err, errlen))
+            return 2;
+        set_nonblocking(L->worker.wake_fd[0]);
+        L->have_worker = 1;
+    }
+    return 0;
+}
+
+static void teardown(loop_t *L)
+{
+    viewer_t *v = L->v;
+    if (L->have_worker)
+        viewer_worker_stop(&L->worker);
+    viewer_renderer_close(&L->fast);
+    if (L->display_open)
+        v->display_ops->close(&L->display); /* gives the display back: a DRM CRTC as it was found */
+    if (L->input_open)
+        v->input_ops->close(&L->input);
+    vfp_image_free(&L->clean);
+    vfp_image_free(&L->frame);
+    free(L->latency);
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    for (int i = 0; i < 2; i++)
+        if (signal_pipe[i] >= 0) {
+            close(signal_pipe[i]);
+            signal_pipe[i] = -1;
+        }
+}
+
+/* The earliest of the deadlines, as a poll timeout in ms (-1: none). */
+static int timeout_ms(uint64_t now, const uint64_t *deadlines, int n)
+{
+    uint64_t first = 0;
+    for (int i = 0; i < n; i++)
+        if (deadlines[i] && (!first || deadlines[i] < first))
+            first = deadlines[i];
+    if (!first)
+        return -1;
+    if (first <= now)
+        return 0;
+    uint64_t ms = (first - now + 999999) / 1000000;
+    return ms > 60000 ? 60000 : (int)ms;
+}
+
+int viewer_loop(viewer_t *v)
+{
+    loop_t L;
+    memset(&L, 0, sizeof L);
+    L.v = v;
+    L.started = now_ns();
+    L.need_fast = 1;
+    L.gen = 1;
+    char err[VIEWER_ERR_LEN] = "";
+    int status = setup(&L, err, sizeof err);
+    if (status) {
+        fprintf(stderr, "volfix: %s\n", err);
+        teardown(&L);
+        return 2;
+    }
+    const uint32_t *d = v->scene.full.core.dims;
+    printf("volfix: %s (%ux%ux%u) on %s: display %s %ux%u, input %s, %d threads, preview %s\n", v->volume_arg, d[0],
+           d[1], d[2], v->board.name, v->board.display, L.display.width, L.display.height,
+           v->script ? "script" : v->board.input, v->scene.threads, v->scene.preview_factor > 1 ? "on" : "off");
+    fflush(stdout);
+    atomic_store(&L.worker.latest, L.gen);
+    uint64_t idle_ns = (uint64_t)v->board.idle_ms * 1000000u;
+    int readable = 1, stop = 0;
+    while (!stop && !status) {
+        uint64_t now = now_ns();
+        /* Input first, all of it: one frame answers every event that arrived meanwhile. */
+        uint64_t input_deadline = v->input_ops->deadline_ns(&L.input);
+        if (readable || (input_deadline && input_deadline <= now)) {
+            vfp_event_t ev[MAX_EVENTS];
+            int n;
+            do {
+                n = v->input_ops->read(&L.input, ev, MAX_EVENTS, now, err, sizeof err);
+                if (n < 0) {
+                    fprintf(stderr, "volfix: %s\n", err);
+                    status = 2;
+                    break;
+                }
+                apply_events(&L, ev, n);
+            } while (n == MAX_EVENTS);
+        }
+        if (status)
+            break;
+        if (!L.display_open && now >= L.reopen_at) {
+            if (open_display(&L, err, sizeof err) == 0) {
+                fprintf(stderr, "volfix: display %s is back\n", v->board.display);
+                L.need_fast = 1;
+            } else {
+                L.display_open = 0;
+                L.reopen_at = now + (uint64_t)REOPEN_INTERVAL_MS * 1000000u;
+            }
+        }
+        if (L.have_worker)
+            status = take_full(&L);
+        if (!status && L.display_open && L.need_fast)
+            status = render_fast(&L);
+        else if (!status && L.display_open && L.need_redraw)
+            status = (L.need_redraw = 0, present(&L, L.clean_full, L.clean_ms));
+        if (status)
+            break;
+
+        /* Full quality once the knobs rest (at once when quitting: the last picture is the best one). */
+        now = now_ns();
+        uint64_t full_at = 0;
+        if (full_wanted(&L) && worker_free(&L)) {
+            full_at = L.quitting || !L.last_input ? now : L.last_input + idle_ns;
+            if (full_at <= now) {
+                viewer_worker_request(&L.worker, &v->controls, L.gen, L.clean.width, L.clean.height, L.clean.format);
+                full_at = 0;
+            }
+        }
+        if (L.quitting && !(full_wanted(&L)))
+            break;
+
+        struct pollfd fds[3];
+        int nfds = 0, in_fd = v->input_ops->fd(&L.input);
+        fds[nfds++] = (struct pollfd){.fd = signal_pipe[0], .events = POLLIN};
+        fds[nfds++] = (struct pollfd){.fd = L.have_worker ? L.worker.wake_fd[0] : -1, .events = POLLIN};
+        fds[nfds++] = (struct pollfd){.fd = in_fd, .events = POLLIN};
+        uint64_t deadlines[3] = {v->input_ops->deadline_ns(&L.input), full_at, L.display_open ? 0 : L.reopen_at};
+        int rc = poll(fds, (nfds_t)nfds, timeout_ms(now_ns(), deadlines, 3));
+        if (rc < 0 && errno != EINTR) {
+            fprintf(stderr, "volfix: poll: %s\n", strerror(errno));
+            status = 2;
+            break;
+        }
+        if (rc > 0 && (fds[0].revents & POLLIN)) {
+            drain(signal_pipe[0]);
+            stop = 1; /* SIGINT or SIGTERM: leave now, giving the display back */
+        }
+        if (rc > 0 && (fds[1].revents & POLLIN))
+            drain(L.worker.wake_fd[0]);
+        readable = rc > 0 && (fds[2].revents & (POLLIN | POLLHUP | POLLERR));
+    }
+    summary(&L);
+    teardown(&L);
+    return status;
+}

@@ -1,0 +1,270 @@
+/*
+ * main.c: volfix, the knob-driven viewer: options, set-up and the closing summary (the loop is loop.c).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "viewer.h"
+
+static const char usage[] =
+    "usage: volfix --board FILE VOLUME [options]\n"
+    "Show VOLUME on the board's display and turn it with the board's knobs (boards/README.md). While a knob\n"
+    "turns, frames come from a half-resolution copy; full quality follows once the knobs rest.\n\n"
+    "  --board FILE         the board: display, inputs, what each knob and button does (required)\n"
+    "  --preset NAME        transfer function to start with: ramp (default), sharp, ct-bone, ct-skin-bone or\n"
+    "                       mr-brain; the preset button cycles through them all\n"
+    "  --tf FILE            start with a transfer-function file (the preset button cycles it and the presets)\n"
+    "  --window LO,HI       data values the transfer function's 0..1 spans (default: from the data)\n"
+    "  --mode MODE          point, preint1 (default) or preclass; the mode button cycles them\n"
+    "  --view AZ,EL[,ROLL]  first view in degrees (default 30,20); the reset button comes back to it\n"
+    "  --zoom Z             first zoom, 1 fitting the volume (default 1)\n"
+    "  --script FILE        knob turns and presses from a file instead of the board's inputs\n"
+    "                       (lines 'MS turn KNOB STEPS', 'MS press BUTTON', 'MS release BUTTON', 'MS quit')\n"
+    "  --device PATH        the display device instead of the board's (png: the frames' directory)\n"
+    "  --size WxH           picture size for the sdl and png displays instead of the board's\n"
+    "  --preview N          while a knob turns, render a copy N times smaller a side (default 2 for volumes\n"
+    "                       of 64^3 voxels or more, else 1: off)\n"
+    "  --idle-ms MS         full quality once the knobs rest this long (default: the board's, else 300)\n"
+    "  --threads N          rendering threads (default: the board's, else the processors online)\n"
+    "  --overlay            show the frame-time overlay from the start (the overlay button toggles it)\n"
+    "  --log FILE           a line per frame shown: quality, time, input latency, and the volfix-sim render\n"
+    "                       options that give the same pixels\n"
+    "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]   for raw voxel files\n"
+    "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N. Ctrl-C quits.\n";
+
+static int bad(const char *option, const char *value, const char *expected)
+{
+    fprintf(stderr, "volfix: %s %s: expected %s\n", option, value ? value : "(missing)", expected);
+    return 2;
+}
+
+static int parse_int(const char *text, int lo, int hi, int *out)
+{
+    char *end;
+    long n = text ? strtol(text, &end, 10) : 0;
+    if (!text || end == text || *end || n < lo || n > hi)
+        return 2;
+    *out = (int)n;
+    return 0;
+}
+
+typedef struct options {
+    const char *board, *volume, *preset, *tf, *window, *script, *device, *log;
+    vf_mode_t mode;
+    double view[3], zoom;
+    uint32_t width, height;
+    int preview, idle_ms, threads, overlay;
+    vfp_load_opts_t load;
+} options_t;
+
+static int parse(options_t *o, int argc, char **argv)
+{
+    memset(o, 0, sizeof *o);
+    o->mode = VF_MODE_PREINT1;
+    o->view[0] = 30;
+    o->view[1] = 20;
+    o->zoom = 1;
+    o->preview = o->idle_ms = o->threads = -1;
+    char err[VIEWER_ERR_LEN];
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int takes = 1;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            fputs(usage, stdout);
+            return 1;
+        } else if (!strcmp(a, "--board") && v) {
+            o->board = v;
+        } else if (!strcmp(a, "--preset") && v) {
+            o->preset = v;
+        } else if (!strcmp(a, "--tf") && v) {
+            o->tf = v;
+        } else if (!strcmp(a, "--window") && v) {
+            o->window = v;
+        } else if (!strcmp(a, "--script") && v) {
+            o->script = v;
+        } else if (!strcmp(a, "--device") && v) {
+            o->device = v;
+        } else if (!strcmp(a, "--log") && v) {
+            o->log = v;
+        } else if (!strcmp(a, "--mode")) {
+            int m;
+            for (m = 0; m < VF_MODE_COUNT && !(v && !strcmp(v, vf_mode_name((vf_mode_t)m))); m++)
+                ;
+            if (m == VF_MODE_COUNT)
+                return bad(a, v, "point, preint1 or preclass");
+            o->mode = (vf_mode_t)m;
+        } else if (!strcmp(a, "--view")) {
+            int n = v ? sscanf(v, "%lf,%lf,%lf", &o->view[0], &o->view[1], &o->view[2]) : 0;
+            if (n < 2)
+                return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees");
+        } else if (!strcmp(a, "--zoom")) {
+            char *end;
+            o->zoom = v ? strtod(v, &end) : 0;
+            if (!v || *end || !(o->zoom >= VFP_ZOOM_MIN && o->zoom <= VFP_ZOOM_MAX))
+                return bad(a, v, "a zoom from 0.25 to 8");
+        } else if (!strcmp(a, "--size")) {
+            unsigned w, h;
+            char extra;
+            if (!v || sscanf(v, "%ux%u%c", &w, &h, &extra) != 2 || w < 16 || h < 16 || w > 4096 || h > 4096)
+                return bad(a, v, "WxH, each 16 to 4096");
+            o->width = w;
+            o->height = h;
+        } else if (!strcmp(a, "--preview")) {
+            if (parse_int(v, 1, 8, &o->preview))
+                return bad(a, v, "an integer from 1 (off) to 8");
+        } else if (!strcmp(a, "--idle-ms")) {
+            if (parse_int(v, 0, 60000, &o->idle_ms))
+                return bad(a, v, "milliseconds from 0 to 60000");
+        } else if (!strcmp(a, "--threads")) {
+            if (parse_int(v, 1, VFP_MAX_THREADS, &o->threads))
+                return bad(a, v, "an integer from 1 to 16");
+        } else if (!strcmp(a, "--overlay")) {
+            o->overlay = 1;
+            takes = 0;
+        } else if (!strcmp(a, "--dims") && v) {
+            if (vfp_parse_dims(v, o->load.dims, err, sizeof err)) {
+                fprintf(stderr, "volfix: --dims: %s\n", err);
+                return 2;
+            }
+            o->load.have_dims = 1;
+        } else if (!strcmp(a, "--type") && v) {
+            if (vfp_parse_type(v, &o->load.type, err, sizeof err)) {
+                fprintf(stderr, "volfix: --type: %s\n", err);
+                return 2;
+            }
+            o->load.have_type = 1;
+        } else if (!strcmp(a, "--big-endian")) {
+            o->load.big_endian = 1;
+            takes = 0;
+        } else if (!strcmp(a, "--spacing")) {
+            double *s = o->load.spacing;
+            if (!v || sscanf(v, "%lf,%lf,%lf", &s[0], &s[1], &s[2]) != 3 || !(s[0] > 0 && s[1] > 0 && s[2] > 0))
+                return bad(a, v, "X,Y,Z, three positive numbers");
+            o->load.have_spacing = 1;
+        } else if (a[0] != '-' && !o->volume) {
+            o->volume = a;
+            takes = 0;
+        } else {
+            fprintf(stderr, "volfix: unknown option or extra argument '%s' (see volfix --help)\n", a);
+            return 2;
+        }
+        i += takes;
+    }
+    if (!o->board || !o->volume) {
+        fprintf(stderr, "volfix: %s (usage: volfix --board FILE VOLUME [options]; see --help)\n",
+                !o->board ? "no board given" : "no volume given");
+        return 2;
+    }
+    if (o->preset && o->tf) {
+        fprintf(stderr, "volfix: give --preset or --tf, not both\n");
+        return 2;
+    }
+    return 0;
+}
+
+/* The transfer functions the preset button cycles: the --tf file first if there is one, then the presets. */
+static int load_tfs(viewer_scene_t *s, const options_t *o, int *first, char *err, size_t errlen)
+{
+    s->tf_count = 0;
+    *first = 0;
+    if (o->tf) {
+        if (vfp_tf_load(&s->tfs[0], o->tf, err, errlen))
+            return 2;
+        snprintf(s->tf_args[0], sizeof s->tf_args[0], "--tf %s", o->tf);
+        s->tf_count = 1;
+    }
+    for (int i = 0; vfp_tf_preset_names[i] && s->tf_count < VIEWER_MAX_TFS; i++) {
+        vfp_tf_preset(&s->tfs[s->tf_count], vfp_tf_preset_names[i], err, errlen);
+        snprintf(s->tf_args[s->tf_count], sizeof s->tf_args[0], "--preset %s", vfp_tf_preset_names[i]);
+        if (o->preset && !strcmp(o->preset, vfp_tf_preset_names[i]))
+            *first = s->tf_count;
+        s->tf_count++;
+    }
+    if (o->preset && !*first && strcmp(o->preset, vfp_tf_preset_names[0])) {
+        vfp_tf_t unused;
+        return vfp_tf_preset(&unused, o->preset, err, errlen); /* its message lists the names */
+    }
+    return 0;
+}
+
+static int setup(viewer_t *v, const options_t *o, char *err, size_t errlen)
+{
+    if (vfp_board_load(&v->board, o->board, err, errlen))
+        return 2;
+    vfp_board_t *b = &v->board;
+    if (o->device)
+        snprintf(b->display_device, sizeof b->display_device, "%s", o->device);
+    if (o->width) {
+        b->width = o->width;
+        b->height = o->height;
+    }
+    if (o->idle_ms >= 0)
+        b->idle_ms = o->idle_ms;
+    if (o->overlay)
+        b->overlay = 1;
+    v->script = o->script;
+    if (!(v->display_ops = vfp_display_find(b->display, b, err, errlen)))
+        return 2;
+    if (!(v->input_ops = vfp_input_find(o->script ? "script" : b->input, b, err, errlen)))
+        return 2;
+
+    viewer_scene_t *s = &v->scene;
+    if (vfp_volume_load(&s->full, o->volume, &o->load, err, errlen))
+        return 2;
+    s->window = vfp_default_window(&s->full);
+    if (o->window && vfp_parse_window(&s->full, o->window, &s->window, err, errlen))
+        return 2;
+    int first;
+    if (load_tfs(s, o, &first, err, errlen))
+        return 2;
+    vf_params_default(&s->params);
+    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    s->threads = o->threads > 0 ? o->threads : b->threads > 0 ? b->threads : cpus < 1 ? 1 : cpus > 16 ? 16 : (int)cpus;
+    const uint32_t *d = s->full.core.dims;
+    uint64_t voxels = (uint64_t)d[0] * d[1] * d[2];
+    s->preview_factor = o->preview > 0 ? o->preview : voxels >= 64 * 64 * 64 ? 2 : 1;
+    if (s->preview_factor > 1 && vfp_volume_downsampled(&s->preview, &s->full, s->preview_factor, err, errlen))
+        return 2;
+
+    vfp_controls_t *c = &v->controls;
+    c->azimuth = o->view[0];
+    c->elevation = o->view[1];
+    c->roll = o->view[2];
+    c->zoom = o->zoom;
+    c->tf_scale = 1;
+    c->preset = first;
+    c->preset_count = s->tf_count;
+    c->mode = o->mode;
+    c->overlay = b->overlay;
+    v->home = *c;
+    if (o->log && !(v->log = fopen(o->log, "w"))) {
+        snprintf(err, errlen, "%s: cannot write the log", o->log);
+        return 2;
+    }
+    v->volume_arg = o->volume;
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    options_t o;
+    int status = parse(&o, argc, argv);
+    if (status)
+        return status == 1 ? 0 : 2;
+    viewer_t v;
+    memset(&v, 0, sizeof v);
+    char err[VIEWER_ERR_LEN] = "";
+    status = setup(&v, &o, err, sizeof err);
+    if (status) {
+        fprintf(stderr, "volfix: %s\n", err);
+    } else {
+        status = viewer_loop(&v);
+    }
+    if (v.log)
+        fclose(v.log);
+    vfp_volume_free(&v.scene.full);
+    vfp_volume_free(&v.scene.preview);
+    return status;
+}

@@ -1,0 +1,55 @@
+/* scene.c: bringing a renderer up to date with the controls, and rendering a frame of them (see viewer.h). */
+#include "viewer.h"
+
+#include <string.h>
+
+void viewer_renderer_close(viewer_renderer_t *vr)
+{
+    if (vr->open)
+        vfp_render_close(&vr->r);
+    vr->open = 0;
+}
+
+int viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_volume_t *volume,
+                const vfp_controls_t *c, char *err, size_t errlen)
+{
+    if (vr->open && (vr->volume != volume || vr->mode != c->mode))
+        viewer_renderer_close(vr);
+    int fresh = !vr->open;
+    if (fresh) {
+        vf_params_t params = scene->params;
+        params.mode = c->mode;
+        if (vfp_render_open(&vr->r, &params, &volume->core, scene->threads, err, errlen))
+            return 2;
+        vr->open = 1;
+        vr->volume = volume;
+        vr->mode = c->mode;
+        /* The window is fixed for the session (the level and width knobs move the transfer function instead):
+         * the slices are built once per renderer. */
+        if (vfp_render_set_window(&vr->r, scene->window, err, errlen)) {
+            viewer_renderer_close(vr);
+            return 2;
+        }
+    }
+    if (fresh || vr->preset != c->preset || vr->tf_shift != c->tf_shift || vr->tf_scale != c->tf_scale) {
+        vfp_tf_t tf = scene->tfs[c->preset];
+        vfp_tf_move(&tf, &scene->full, scene->window, c->tf_shift, c->tf_scale);
+        vf_tf_point_t points[VF_MAX_TF_POINTS];
+        uint32_t n = vfp_tf_to_core(&tf, &scene->full, scene->window, points);
+        if (vfp_render_set_tf(&vr->r, points, n, err, errlen)) {
+            viewer_renderer_close(vr); /* half applied: start again next time */
+            return 2;
+        }
+        vr->preset = c->preset;
+        vr->tf_shift = c->tf_shift;
+        vr->tf_scale = c->tf_scale;
+    }
+    return 0;
+}
+
+int viewer_render(viewer_renderer_t *vr, const vfp_controls_t *c, int rotation, const vf_image_t *image, char *err,
+                  size_t errlen)
+{
+    vf_view_t view = vfp_controls_view(c, rotation);
+    return vfp_render_frame(&vr->r, &view, image, err, errlen);
+}

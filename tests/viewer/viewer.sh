@@ -1,0 +1,178 @@
+#!/bin/sh
+# The viewer (build/volfix) end to end on the headless board: scripted knob sessions write PNG frames and a log
+# whose every line gives the volfix-sim render options of its frame; every frame must equal volfix-sim's picture
+# pixel for pixel, previews (--downsample 2) and full-quality frames alike. Also: frames only when something
+# changes, the last picture is full quality at the expected angles, SIGTERM leaves cleanly, and bad input gets
+# one line naming what was wrong.
+cd "$(dirname "$0")/../.." || exit 2
+build=${BUILD:-build}
+viewer=$build/volfix sim=$build/volfix-sim
+data=${VOLFIX_DATA:-../shared/data}
+board=boards/host-headless.board
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+ok() { echo "ok - viewer/$1"; }
+fail() { echo "not ok - viewer/$1: $2"; }
+
+# frames_match NAME VOLUME DIR LOG: every frame in LOG is DIR/frame-N.png and equals volfix-sim render's picture
+frames_match() {
+    name=$1 volume=$2 dir=$3 log=$4
+    n=0 bad=""
+    while IFS= read -r line; do
+        frame=$(echo "$line" | cut -d' ' -f2)
+        opts=${line#*: }
+        png=$(printf '%s/frame-%05d.png' "$dir" "$frame")
+        # shellcheck disable=SC2086 # opts is a list of options
+        if [ ! -f "$png" ]; then
+            bad="frame $frame: $png is missing"
+        elif ! "$sim" render "$volume" $opts -o "$tmp/sim.png" >/dev/null 2>"$tmp/sim.err"; then
+            bad="frame $frame: volfix-sim render $opts failed: $(cat "$tmp/sim.err")"
+        elif ! "$sim" diff "$png" "$tmp/sim.png" --max 0 >"$tmp/diff.out" 2>&1; then
+            bad="frame $frame ($opts): $(cat "$tmp/diff.out")"
+        fi
+        [ -n "$bad" ] && break
+        n=$((n + 1))
+    done <"$log"
+    files=$(find "$dir" -name 'frame-*.png' | wc -l)
+    if [ -n "$bad" ]; then
+        fail "$name" "$bad"
+    elif [ "$n" -eq 0 ] || [ "$files" -ne "$n" ]; then
+        fail "$name" "$n frames in the log, $files PNG files"
+    else
+        ok "$name ($n frames equal volfix-sim render)"
+    fi
+}
+
+# run_viewer NAME ARGS...: run it, status in $status, output in $tmp/NAME.out and .err
+run_viewer() {
+    name=$1
+    shift
+    "$viewer" "$@" >"$tmp/$name.out" 2>"$tmp/$name.err"
+    status=$?
+}
+
+# 1. The spin session on engine (256x256x128) at 240x240 RGB565.
+run_viewer spin --board "$board" "$data/engine.nhdr" --script tests/viewer/spin.script --device "$tmp/spin" \
+    --log "$tmp/spin.log"
+if [ $status -ne 0 ]; then
+    fail "spin runs" "status $status: $(cat "$tmp/spin.err")"
+else
+    ok "spin runs"
+    frames_match "spin frames equal volfix-sim" "$data/engine.nhdr" "$tmp/spin" "$tmp/spin.log"
+    last=$(tail -n 1 "$tmp/spin.log")
+    case "$last" in
+    *" full "*"--view 90,30,0 --zoom 1.21"*"--format rgb565") ok "spin ends in full quality at 90,30 zoom 1.21" ;;
+    *) fail "spin ends in full quality at 90,30 zoom 1.21" "last frame: $last" ;;
+    esac
+    frames=$(wc -l <"$tmp/spin.log")
+    # 16 detents: at most one preview each, the first preview, a full frame at the start (if it beats the first
+    # knob) and one at the end
+    [ "$frames" -le 19 ] && ok "spin renders only for changes ($frames frames for 16 detents)" ||
+        fail "spin renders only for changes" "$frames frames for 16 detents"
+    grep -q 'input-to-frame latency over 16 inputs: median' "$tmp/spin.out" && ok "spin reports the latency" ||
+        fail "spin reports the latency" "$(cat "$tmp/spin.out")"
+fi
+
+# 2. Nothing happens: one preview, one full frame, nothing more.
+printf '# nothing\n800 quit\n' >"$tmp/idle.script"
+run_viewer idle --board "$board" phantom:marschner-lobb:64 --script "$tmp/idle.script" --device "$tmp/idle" \
+    --log "$tmp/idle.log"
+if [ $status -eq 0 ] && [ "$(wc -l <"$tmp/idle.log")" -eq 2 ] && sed -n 2p "$tmp/idle.log" | grep -q ' full '; then
+    ok "an idle session shows a preview, then full quality, then nothing"
+else
+    fail "an idle session shows a preview, then full quality, then nothing" "status $status: $(cat "$tmp/idle.log")"
+fi
+frames_match "idle frames equal volfix-sim" phantom:marschner-lobb:64 "$tmp/idle" "$tmp/idle.log"
+
+# 3. The transfer function moving, presets and modes cycling (the latency session), on a phantom.
+run_viewer level --board "$board" phantom:shepp-logan:64 --script tests/viewer/level.script --device "$tmp/level" \
+    --log "$tmp/level.log"
+if [ $status -ne 0 ]; then
+    fail "level runs" "status $status: $(cat "$tmp/level.err")"
+else
+    frames_match "level frames equal volfix-sim" phantom:shepp-logan:64 "$tmp/level" "$tmp/level.log"
+    last=$(tail -n 1 "$tmp/level.log")
+    case "$last" in
+    *" full "*"--tf-move 0,1 --preset sharp --mode preclass"*) ok "level: back to shift 0, next preset, next mode" ;;
+    *) fail "level: back to shift 0, next preset, next mode" "last frame: $last" ;;
+    esac
+    grep -q -- '--tf-move 1,1 ' "$tmp/level.log" && ok "level: the function moved a whole window" ||
+        fail "level: the function moved a whole window" "no frame with --tf-move 1,1"
+fi
+
+# 4. A panel mounted a quarter turn, not square, without the preview: the view is rolled back by the mounting.
+sed -e 's/^display.width = .*/display.width = 200/' -e 's/^display.height = .*/display.height = 120/' \
+    -e 's/^display.format = .*/display.format = xrgb8888\ndisplay.rotation = 90/' "$board" >"$tmp/rot.board"
+printf '100 turn 0 -2\n600 quit\n' >"$tmp/rot.script"
+run_viewer rot --board "$tmp/rot.board" phantom:shepp-logan:32 --script "$tmp/rot.script" --device "$tmp/rot" \
+    --log "$tmp/rot.log" --preview 1
+if [ $status -eq 0 ] && tail -n 1 "$tmp/rot.log" | grep -q ' full .*--view 20,20,270 .*--size 200x120 --format xrgb8888$' &&
+    ! grep -q preview "$tmp/rot.log"; then
+    ok "rotation 90: roll 270, every frame full quality without the preview"
+    frames_match "rotated frames equal volfix-sim" phantom:shepp-logan:32 "$tmp/rot" "$tmp/rot.log"
+else
+    fail "rotation 90: roll 270, every frame full quality without the preview" "status $status: $(cat "$tmp/rot.log" "$tmp/rot.err")"
+fi
+
+# 5. The overlay: drawn over a small corner only.
+run_viewer overlay --board "$board" phantom:marschner-lobb:64 --script "$tmp/idle.script" --device "$tmp/ov" \
+    --log "$tmp/ov.log" --overlay
+opts=$(tail -n 1 "$tmp/ov.log" | sed 's/^[^:]*: //')
+# shellcheck disable=SC2086
+"$sim" render phantom:marschner-lobb:64 $opts -o "$tmp/ov-sim.png" >/dev/null 2>&1
+pct=$("$sim" diff "$tmp/ov/frame-00001.png" "$tmp/ov-sim.png" --json 2>&1 | sed -n 's/.*"over1_pct": \([0-9.]*\).*/\1/p')
+if [ -n "$pct" ] && awk -v p="$pct" 'BEGIN { exit !(p > 0.5 && p < 10) }'; then
+    ok "overlay covers $pct% of the frame"
+else
+    fail "overlay covers a small part of the frame" "over1_pct '$pct'"
+fi
+
+# 6. SIGTERM: the viewer leaves at once, cleanly, with its summary.
+printf '100 turn 0 1\n' >"$tmp/forever.script"
+"$viewer" --board "$board" phantom:sphere:32 --script "$tmp/forever.script" --device "$tmp/term" >"$tmp/term.out" 2>&1 &
+pid=$!
+i=0
+while [ $i -lt 50 ] && [ "$(find "$tmp/term" -name '*.png' 2>/dev/null | wc -l)" -lt 2 ]; do
+    sleep 0.1
+    i=$((i + 1))
+done
+kill -TERM $pid
+wait $pid
+status=$?
+if [ $status -eq 0 ] && grep -q '^volfix: [0-9]* frames' "$tmp/term.out"; then
+    ok "SIGTERM exits 0 with the summary"
+else
+    fail "SIGTERM exits 0 with the summary" "status $status: $(cat "$tmp/term.out")"
+fi
+
+# 7. Bad input: status 2 and one line that says what was wrong.
+expect_error() {
+    name=$1 phrase=$2
+    shift 2
+    "$viewer" "$@" >"$tmp/out" 2>"$tmp/err"
+    status=$?
+    if [ $status -ne 2 ]; then
+        fail "$name" "exit status $status, expected 2 ($(head -n 1 "$tmp/err"))"
+    elif [ "$(wc -l <"$tmp/err")" -ne 1 ]; then
+        fail "$name" "expected one line on stderr: $(tr '\n' '|' <"$tmp/err")"
+    elif ! grep -qF -- "$phrase" "$tmp/err"; then
+        fail "$name" "stderr lacks '$phrase': $(cat "$tmp/err")"
+    else
+        ok "$name"
+    fi
+}
+expect_error "no board" "volfix: no board given" phantom:sphere:8
+expect_error "no volume" "volfix: no volume given" --board "$board"
+expect_error "missing board file" "boards/nope.board" --board boards/nope.board phantom:sphere:8
+printf 'display = png\ninput = script\nknob.0.action = spin\n' >"$tmp/typo.board"
+expect_error "board with a typo" "typo.board:3:" --board "$tmp/typo.board" phantom:sphere:8
+expect_error "missing script" "nope.script" --board "$board" phantom:sphere:8 --script "$tmp/nope.script" --device "$tmp/x"
+expect_error "missing volume" "nope.nhdr" --board "$board" "$tmp/nope.nhdr" --script "$tmp/idle.script" --device "$tmp/x"
+expect_error "unknown preset" "unknown preset 'bones'" --board "$board" phantom:sphere:8 --preset bones --script "$tmp/idle.script"
+expect_error "bad preview" "--preview 0: expected an integer from 1 (off) to 8" --board "$board" phantom:sphere:8 --preview 0
+expect_error "unknown option" "unknown option or extra argument '--colour'" --board "$board" phantom:sphere:8 --colour red
+touch "$tmp/file"
+expect_error "frames directory is a file" "$tmp/file" --board "$board" phantom:sphere:8 --script "$tmp/idle.script" --device "$tmp/file"
+"$viewer" --help >"$tmp/out" 2>&1 && grep -q '^usage: volfix --board FILE VOLUME' "$tmp/out" && ok "--help" ||
+    fail "--help" "$(head -n 2 "$tmp/out")"
