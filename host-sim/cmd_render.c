@@ -6,10 +6,12 @@
 #include "scene.h"
 
 static const char usage_head[] =
-    "usage: volfix-sim render VOLUME [options] -o OUT.png\n"
+    "usage: volfix-sim render VOLUME [options] -o OUT.png | --hash\n"
     "Render one image of VOLUME with the fixed-point core (or, with --reference, with the double-precision\n"
     "reference of the same algorithm, or with --truth, with the ground-truth ray caster) and write it as PNG.\n\n"
-    "  -o FILE              the PNG to write (required)\n"
+    "  -o FILE              the PNG to write\n"
+    "  --hash               print the frame's FNV-1a 64-bit hash over its pixel bytes (port/image.h), to\n"
+    "                       compare frames across machines; with or without -o\n"
     "  --reference          use the double-precision reference renderer\n"
     "  --truth              use the ground-truth ray caster (trilinear, continuous transfer function, exact\n"
     "                       integration; --mode and the table options do not apply)\n";
@@ -19,11 +21,12 @@ int sim_cmd_render(int argc, char **argv)
     char usage[4096], err[VFP_ERR_LEN], about[512];
     snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_REF | SIM_OPT_TRUTH, usage);
+    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_REF | SIM_OPT_TRUTH | SIM_OPT_HASH,
+                           usage);
     if (status)
         return status == 1 ? 0 : 2;
-    if (!o.out) {
-        fprintf(stderr, "volfix-sim render: no output file (-o OUT.png)\n");
+    if (!o.out && !o.hash) {
+        fprintf(stderr, "volfix-sim render: no output file (-o OUT.png, or --hash)\n");
         return 2;
     }
     sim_scene_t scene;
@@ -35,15 +38,22 @@ int sim_cmd_render(int argc, char **argv)
     status = o.reference ? sim_render_reference(&scene, NULL, &img, err, sizeof err)
              : o.truth   ? sim_render_truth(&scene, &img, err, sizeof err)
                          : sim_render_core(&scene, &img, NULL, err, sizeof err);
+    uint64_t hash = 0;
     if (status == 0) {
-        status = vfp_png_write(o.out, &img, err, sizeof err);
+        hash = vfp_image_hash(&img);
+        if (o.out)
+            status = vfp_png_write(o.out, &img, err, sizeof err);
         sim_image_free(&img);
     }
     if (status) {
         fprintf(stderr, "volfix-sim: %s\n", err);
     } else {
         sim_scene_describe(&scene, about, sizeof about);
-        printf("%s: %s%s\n", o.out, about, o.reference ? " (reference)" : o.truth ? " (ground truth)" : "");
+        const char *which = o.reference ? " (reference)" : o.truth ? " (ground truth)" : "";
+        if (o.hash)
+            printf("%016llx %s%s\n", (unsigned long long)hash, about, which);
+        if (o.out)
+            printf("%s: %s%s\n", o.out, about, which);
     }
     sim_scene_free(&scene);
     return status ? 2 : 0;

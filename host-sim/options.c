@@ -198,6 +198,9 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
             o->load.have_spacing = 1;
         } else if ((groups & SIM_OPT_OUT) && strcmp(a, "-o") == 0 && v) {
             o->out = v;
+        } else if ((groups & SIM_OPT_HASH) && strcmp(a, "--hash") == 0) {
+            o->hash = 1;
+            takes = 0;
         } else if ((groups & SIM_OPT_REF) && strcmp(a, "--reference") == 0) {
             o->reference = 1;
             takes = 0;

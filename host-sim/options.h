@@ -25,6 +25,7 @@ typedef struct sim_opts {
     const char *out;           /* -o FILE */
     const char *diff;          /* --diff FILE */
     int json;                  /* --json */
+    int hash;                  /* --hash (render) */
     int frames;                /* --frames (bench) */
     int matrix;                /* --matrix (bench) */
 } sim_opts_t;
@@ -41,6 +42,7 @@ enum {
     SIM_OPT_TRUTH = 128,  /* --truth */
     SIM_OPT_AGAINST = 256, /* --against reference|truth */
     SIM_OPT_PIXEL = 512,  /* --pixel X,Y */
+    SIM_OPT_HASH = 1024,  /* --hash */
 };
 
 /* Parse argv (after the command name). Returns 0, 1 when --help was asked (usage printed), or 2 after printing

@@ -36,22 +36,6 @@ double vfp_now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
-int vfp_image_alloc(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
-{
-    img->width = width;
-    img->height = height;
-    img->format = format;
-    img->stride = width * vf_format_bytes(format);
-    img->pixels = calloc(height, img->stride);
-    return img->pixels ? 0 : 2;
-}
-
-void vfp_image_free(vf_image_t *img)
-{
-    free(img->pixels);
-    img->pixels = NULL;
-}
-
 int vfp_render_open(vfp_render_t *r, const vf_params_t *params, const vf_volume_t *volume, int threads, char *err,
                     size_t errlen)
 {

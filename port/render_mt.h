@@ -8,6 +8,7 @@
 
 #include <stddef.h>
 
+#include "image.h"
 #include "volfix.h"
 
 #define VFP_MAX_THREADS 16
@@ -38,11 +39,6 @@ int vfp_render_set_window(vfp_render_t *r, vf_window_t window, char *err, size_t
 int vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t count, char *err, size_t errlen);
 int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen);
 void vfp_render_close(vfp_render_t *r);
-
-/* An image of this size and format in calloc'd memory, rows packed; 0, or 2 when out of memory (pixels NULL).
- * vfp_image_free gives it back and leaves pixels NULL (safe to call again). */
-int vfp_image_alloc(vf_image_t *image, uint32_t width, uint32_t height, vf_format_t format);
-void vfp_image_free(vf_image_t *image);
 
 /* Milliseconds on the monotonic clock. */
 double vfp_now_ms(void);

@@ -49,7 +49,7 @@ expect_error "bad size" "--size 0x10: expected WxH" render phantom:sphere:8 --si
 expect_error "bad format" "--format bgr: expected rgb888, rgb565 or xrgb8888" render phantom:sphere:8 --format bgr -o "$tmp/x.png"
 expect_error "bad zoom" "--zoom 0: expected a number" render phantom:sphere:8 --zoom 0 -o "$tmp/x.png"
 expect_error "bad table size" "--table-size 4096: expected an integer from 2 to 1024" render phantom:sphere:8 --table-size 4096 -o "$tmp/x.png"
-expect_error "no output" "no output file" render phantom:sphere:8
+expect_error "no output" "no output file (-o OUT.png, or --hash)" render phantom:sphere:8
 expect_error "no volume" "no volume given" compare --json
 expect_error "preset and tf" "give --preset or --tf, not both" render phantom:sphere:8 --preset ramp --tf x -o "$tmp/x.png"
 
