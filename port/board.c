@@ -29,7 +29,7 @@ static const char *const knob_keys[KN_COUNT] = {"a", "b", "pull", "action", "ste
 static const char *const button_keys[BT_COUNT] = {"line", "pull", "active_low", "debounce_ms", "action", "device",
                                                   "code"};
 
-static const char *const displays[] = {"drm", "fbdev", "gud", "sdl", "png"};
+static const char *const displays[] = {"drm", "fbdev", "gud", "sdl", "png", "none"};
 static const char *const inputs[] = {"gpiod", "evdev", "sdl", "script"};
 
 /* ---------------------------------------------------------------------------------------------------------- */
@@ -109,6 +109,13 @@ int vfpi_board_fail(vfpi_board_parser_t *p, int line, const char *fmt, ...)
         snprintf(p->err, p->errlen, "%s:%d: %s", p->path, line, msg);
     else
         snprintf(p->err, p->errlen, "%s: %s", p->path, msg);
+    /* One printable line, always: a quoted key or value may carry a vertical tab, a carriage return or a terminal
+     * escape from the file (found by tests/fuzz), as volume_io.c's vfpi_fail() says for the volume readers. */
+    for (unsigned char *c = (unsigned char *)p->err; p->errlen && *c; c++)
+        if (*c == '\t')
+            *c = ' ';
+        else if (*c < 0x20 || *c == 0x7f)
+            *c = '?';
     return 2;
 }
 
@@ -219,7 +226,8 @@ static int set_top(vfpi_board_parser_t *p, int key, const char *keyname, const c
         return copy_string(p, b->name, sizeof b->name, keyname, value);
     case T_DISPLAY:
         if (index_of(displays, (int)(sizeof displays / sizeof *displays), value) < 0)
-            return vfpi_board_fail(p, p->line, "unknown display '%.60s' (expected drm, fbdev, gud, sdl or png)", value);
+            return vfpi_board_fail(p, p->line, "unknown display '%.60s' (expected drm, fbdev, gud, sdl, png or none)",
+                                   value);
         return copy_string(p, b->display, sizeof b->display, keyname, value);
     case T_DEVICE:
         return copy_string(p, b->display_device, sizeof b->display_device, keyname, value);

@@ -5,7 +5,7 @@
  *
  *     # comments start with '#'
  *     name = rpi4-spi-st7789
- *     display = drm                  # drm, fbdev, gud, sdl or png
+ *     display = drm                  # drm, fbdev, gud, sdl, png or none
  *     display.device = /dev/dri/card1
  *     display.format = rgb565        # rgb565, xrgb8888 or rgb888 (what the panel takes)
  *     display.rotation = 0           # 0, 90, 180 or 270: how the panel is mounted

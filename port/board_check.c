@@ -31,7 +31,7 @@ int vfpi_board_finish(vfpi_board_parser_t *p)
 {
     vfp_board_t *b = p->board;
     if (!b->display[0])
-        return vfpi_board_fail(p, 0, "no display given (expected display = drm, fbdev, gud, sdl or png)");
+        return vfpi_board_fail(p, 0, "no display given (expected display = drm, fbdev, gud, sdl, png or none)");
     if (!b->input[0])
         return vfpi_board_fail(p, 0, "no input given (expected input = gpiod, evdev, sdl or script)");
 
@@ -44,7 +44,8 @@ int vfpi_board_finish(vfpi_board_parser_t *p)
             len -= 6;
         snprintf(b->name, sizeof b->name, "%.*s", (int)(len < sizeof b->name ? len : sizeof b->name - 1), base);
     }
-    int is_sdl = strcmp(b->display, "sdl") == 0, is_png = strcmp(b->display, "png") == 0;
+    int is_sdl = strcmp(b->display, "sdl") == 0;
+    int is_png = strcmp(b->display, "png") == 0 || strcmp(b->display, "none") == 0; /* sized and formatted alike */
     if (!p->top_line[T_FORMAT])
         b->format = strcmp(b->display, "gud") == 0 ? VF_FORMAT_RGB565 : is_png ? VF_FORMAT_RGB888
                                                                                : VF_FORMAT_XRGB8888;
@@ -57,7 +58,7 @@ int vfpi_board_finish(vfpi_board_parser_t *p)
     if (!b->display_device[0]) {
         const char *dev = strcmp(b->display, "drm") == 0 ? "/dev/dri/card0"
                           : strcmp(b->display, "fbdev") == 0 ? "/dev/fb0"
-                          : is_png ? "out/frames" : "";
+                          : strcmp(b->display, "png") == 0 ? "out/frames" : "";
         snprintf(b->display_device, sizeof b->display_device, "%s", dev);
     }
     if (!b->threads) {

@@ -12,7 +12,7 @@
 /*********************
  *      DEFINES
  *********************/
-#define KNOWN_DISPLAYS "drm, fbdev, gud, sdl or png"
+#define KNOWN_DISPLAYS "drm, fbdev, gud, sdl, png or none"
 
 /**********************
  *      TYPES
@@ -38,6 +38,7 @@ static const known_display_t known[] = {
     {"gud", "libusb-1.0-0-dev"},
     {"sdl", "libsdl2-dev"},
     {"png", NULL},
+    {"none", NULL},
 };
 
 /**********************
@@ -55,6 +56,7 @@ const vfp_display_ops_t *const vfp_displays[] = {
     &vfp_display_sdl_ops,
 #endif
     &vfp_display_png_ops,
+    &vfp_display_none_ops,
     NULL,
 };
 

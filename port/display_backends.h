@@ -26,6 +26,7 @@ extern const vfp_display_ops_t vfp_display_gud_ops; /* display_gud.c */
 extern const vfp_display_ops_t vfp_display_sdl_ops; /* display_sdl.c */
 #endif
 extern const vfp_display_ops_t vfp_display_png_ops; /* display_png.c */
+extern const vfp_display_ops_t vfp_display_none_ops; /* display_none.c */
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* display_fbdev.c's seams: the kernel's fb ioctls cannot be made on a regular file, so tests open from a
