@@ -29,8 +29,9 @@ run_suite() {
 for t in $(find "$BUILD/tests" -type f -name 'test_*' -perm -u+x 2>/dev/null | sort); do
     case "$t" in *"$pattern"*) run_suite "$t" "$t" ;; esac
 done
-# tests/hw boots a VM and has its own target (make test-hw).
-for t in $(find tests -path tests/hw -prune -o -name '*.sh' ! -name run.sh -print 2>/dev/null | sort); do
+# tests/hw boots a VM and tests/long runs for minutes: they have their own targets (make test-hw, test-long).
+for t in $(find tests \( -path tests/hw -o -path tests/long \) -prune -o -name '*.sh' ! -name run.sh -print 2>/dev/null |
+    sort); do
     case "$t" in *"$pattern"*) run_suite "$t" sh "$t" ;; esac
 done
 

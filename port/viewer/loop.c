@@ -8,6 +8,7 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -15,6 +16,8 @@
 
 #define MAX_EVENTS 64
 #define MAX_PENDING 4096        /* input events waiting for their frame, for the latency figures */
+#define LATENCY_BINS 20000      /* the latency histogram: 0.1 ms bins up to 2 s, and one bin for longer */
+#define LATENCY_BIN_MS 0.1
 #define REOPEN_INTERVAL_MS 1000 /* how often a lost display is looked for */
 
 typedef struct loop {
@@ -40,8 +43,11 @@ typedef struct loop {
     /* the session's figures */
     uint64_t started;
     unsigned frames, previews, fulls, dropped_fulls;
-    double *latency;              /* ms, one per input event that changed something */
-    size_t nlatency, cap_latency;
+    /* Latency of every input event that changed something, kept in fixed memory (a board runs for days): a
+     * histogram for the median and 95th percentile, and the exact worst. */
+    uint32_t latency_bins[LATENCY_BINS + 1];
+    uint64_t nlatency;
+    double worst_latency;
 } loop_t;
 
 static int signal_pipe[2] = {-1, -1}; /* the handler's way into poll: the one piece of process-wide state */
@@ -88,6 +94,22 @@ static double wrap360(double d)
     return d < 0 ? d + 360.0 : d;
 }
 
+/* Resident memory now and at its peak so far, in KB (the long-run test reads them from the log); -1 where the
+ * system does not say. */
+static void memory_kb(long *rss, long *peak)
+{
+    *rss = *peak = -1;
+    FILE *f = fopen("/proc/self/statm", "r");
+    long pages_total, pages_resident;
+    if (f && fscanf(f, "%ld %ld", &pages_total, &pages_resident) == 2)
+        *rss = pages_resident * (sysconf(_SC_PAGESIZE) / 1024);
+    if (f)
+        fclose(f);
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) == 0)
+        *peak = ru.ru_maxrss; /* KB on Linux */
+}
+
 /* One line of the log: the frame, and the volfix-sim render options that reproduce its pixels. */
 static void log_frame(loop_t *L, int full, double ms, double present_ms, double latency_ms)
 {
@@ -103,6 +125,9 @@ static void log_frame(loop_t *L, int full, double ms, double present_ms, double 
         fprintf(v->log, "%.2f ms", latency_ms);
     else
         fprintf(v->log, "-");
+    long rss_kb, peak_kb;
+    memory_kb(&rss_kb, &peak_kb);
+    fprintf(v->log, " rss %ld KB peak %ld KB", rss_kb, peak_kb);
     fprintf(v->log, ": --view %.17g,%.17g,%.17g --zoom %.17g --tf-move %.17g,%.17g %s --mode %s --window %.17g,%.17g "
                     "--size %ux%u --format %s",
             c->azimuth, c->elevation, wrap360(c->roll - v->board.rotation), c->zoom, c->tf_shift, c->tf_scale,
@@ -120,17 +145,25 @@ static void record_latencies(loop_t *L, uint64_t now, double *worst)
     for (int i = 0; i < L->npending; i++) {
         double ms = (double)(now - L->pending[i]) / 1e6;
         *worst = ms > *worst ? ms : *worst;
-        if (L->nlatency == L->cap_latency) {
-            size_t cap = L->cap_latency ? 2 * L->cap_latency : 1024;
-            double *grown = realloc(L->latency, cap * sizeof *grown);
-            if (!grown)
-                break; /* the figures lose some events; the viewer goes on */
-            L->latency = grown;
-            L->cap_latency = cap;
-        }
-        L->latency[L->nlatency++] = ms;
+        L->worst_latency = ms > L->worst_latency ? ms : L->worst_latency;
+        double bin = ms / LATENCY_BIN_MS;
+        L->latency_bins[bin < LATENCY_BINS ? (size_t)bin : LATENCY_BINS]++;
+        L->nlatency++;
     }
     L->npending = 0;
+}
+
+/* The latency below which `share` of the events fall, to the histogram's 0.1 ms (the bin's upper edge). */
+static double latency_quantile(const loop_t *L, double share)
+{
+    uint64_t want = (uint64_t)ceil(share * (double)L->nlatency), seen = 0;
+    for (size_t b = 0; b < LATENCY_BINS; b++) {
+        seen += L->latency_bins[b];
+        if (seen >= want && want > 0)
+            return (double)(b + 1) * LATENCY_BIN_MS < L->worst_latency ? (double)(b + 1) * LATENCY_BIN_MS
+                                                                        : L->worst_latency;
+    }
+    return L->worst_latency;
 }
 
 static void display_lost(loop_t *L, const char *why)
@@ -285,21 +318,14 @@ static void apply_events(loop_t *L, const vfp_event_t *ev, int n)
     }
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 static void summary(loop_t *L)
 {
     double secs = (double)(now_ns() - L->started) / 1e9;
     printf("volfix: %u frames (%u previews, %u full quality) in %.2f s", L->frames, L->previews, L->fulls, secs);
     if (L->nlatency) {
-        qsort(L->latency, L->nlatency, sizeof *L->latency, cmp_double);
-        size_t p95 = (L->nlatency * 95 + 99) / 100;
-        printf("; input-to-frame latency over %zu inputs: median %.1f ms, 95th percentile %.1f ms, worst %.1f ms",
-               L->nlatency, L->latency[L->nlatency / 2], L->latency[p95 ? p95 - 1 : 0], L->latency[L->nlatency - 1]);
+        printf("; input-to-frame latency over %llu inputs: median %.1f ms, 95th percentile %.1f ms, worst %.1f ms",
+               (unsigned long long)L->nlatency, latency_quantile(L, 0.5), latency_quantile(L, 0.95),
+               L->worst_latency);
     }
     printf("\n");
 }
@@ -346,7 +372,6 @@ static void teardown(loop_t *L)
         v->input_ops->close(&L->input);
     vfp_image_free(&L->clean);
     vfp_image_free(&L->frame);
-    free(L->latency);
     signal(SIGINT, SIG_DFL);
     signal(SIGTERM, SIG_DFL);
     for (int i = 0; i < 2; i++)
@@ -442,6 +467,8 @@ int viewer_loop(viewer_t *v)
             }
         }
         if (L.quitting && !(full_wanted(&L)))
+            break;
+        if (v->max_frames && L.frames >= v->max_frames)
             break;
 
         struct pollfd fds[3];

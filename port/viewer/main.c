@@ -5,6 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include "viewer.h"
 
@@ -29,8 +32,9 @@ static const char usage[] =
     "  --idle-ms MS         full quality once the knobs rest this long (default: the board's, else 300)\n"
     "  --threads N          rendering threads (default: the board's, else the processors online)\n"
     "  --overlay            show the frame-time overlay from the start (the overlay button toggles it)\n"
-    "  --log FILE           a line per frame shown: quality, time, input latency, and the volfix-sim render\n"
-    "                       options that give the same pixels\n"
+    "  --log FILE           a line per frame shown: quality, time, input latency, memory, and the volfix-sim\n"
+    "                       render options that give the same pixels\n"
+    "  --frames N           leave after N frames (long runs and tests)\n"
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]   for raw voxel files\n"
     "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N. Ctrl-C quits.\n";
 
@@ -55,7 +59,7 @@ typedef struct options {
     vf_mode_t mode;
     double view[3], zoom;
     uint32_t width, height;
-    int preview, idle_ms, threads, overlay;
+    int preview, idle_ms, threads, overlay, frames;
     vfp_load_opts_t load;
 } options_t;
 
@@ -120,6 +124,9 @@ static int parse(options_t *o, int argc, char **argv)
         } else if (!strcmp(a, "--threads")) {
             if (parse_int(v, 1, VFP_MAX_THREADS, &o->threads))
                 return bad(a, v, "an integer from 1 to 16");
+        } else if (!strcmp(a, "--frames")) {
+            if (parse_int(v, 1, 1000000000, &o->frames))
+                return bad(a, v, "a number of frames from 1");
         } else if (!strcmp(a, "--overlay")) {
             o->overlay = 1;
             takes = 0;
@@ -244,11 +251,18 @@ static int setup(viewer_t *v, const options_t *o, char *err, size_t errlen)
         return 2;
     }
     v->volume_arg = o->volume;
+    v->max_frames = o->frames > 0 ? (unsigned)o->frames : 0;
     return 0;
 }
 
 int main(int argc, char **argv)
 {
+#ifdef __GLIBC__
+    /* Renderers are re-made at other sizes as modes, presets and transfer functions change. glibc would raise its
+     * mmap threshold after the first large free and then serve those arenas from the heap, where they fragment
+     * and the process grows over a long session; a fixed threshold keeps them in mmap, given back on free. */
+    mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+#endif
     options_t o;
     int status = parse(&o, argc, argv);
     if (status)
