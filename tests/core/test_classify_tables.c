@@ -372,11 +372,12 @@ static void classify_bad_keeps_previous(void)
 
 /* ---- entries of samples ------------------------------------------------------------------------------ */
 
-/* round(S (N - 1) / (255 2^32)) for a Q8.32 sample S, exactly, half up */
+/* round(S (N - 1) / (255 2^32)) for a Q8.32 sample S, exactly, half up. Exact in 64 bits (no __int128, which
+ * 32-bit targets lack): S <= 255 2^32 < 2^40 and N <= 1024, so the numerator is below 2^52. */
 static uint32_t exact_entry(uint64_t s, uint32_t n)
 {
-    unsigned __int128 num = (unsigned __int128)s * (n - 1) * 2 + (unsigned __int128)255 * ((uint64_t)1 << 32);
-    return (uint32_t)(num / ((unsigned __int128)510 << 32));
+    uint64_t num = s * (n - 1) * 2 + (uint64_t)255 * ((uint64_t)1 << 32);
+    return (uint32_t)(num / ((uint64_t)510 << 32));
 }
 
 static void entry_of_sample_exact(void)
@@ -397,7 +398,7 @@ static void entry_of_sample_exact(void)
          * when that is an integer, and their neighbours */
         int halfway = 0;
         for (uint64_t m = 0; m + 1 < n; m++) {
-            unsigned __int128 num = (unsigned __int128)(2 * m + 1) * 255 * ((uint64_t)1 << 31);
+            uint64_t num = (2 * m + 1) * 255 * ((uint64_t)1 << 31); /* < 2^11 2^8 2^31: fits */
             if (num % (n - 1))
                 continue;
             uint64_t s = (uint64_t)(num / (n - 1));
@@ -696,7 +697,7 @@ static void scalar_entry_ranges(void)
                     if (s_q32 < 0 || s_q32 > (INT64_C(255) << 32))
                         continue;
                     /* x = s (N - 1) / 255 exactly as a fraction: whole part and whether there is a remainder */
-                    unsigned __int128 num = (unsigned __int128)s_q32 * (n - 1), den = (unsigned __int128)255 << 32;
+                    uint64_t num = (uint64_t)s_q32 * (n - 1), den = (uint64_t)255 << 32; /* num < 2^50 */
                     uint32_t whole = (uint32_t)(num / den);
                     bool remainder = num % den != 0;
                     uint32_t i = whole < n - 2 ? whole : n - 2;
@@ -737,7 +738,55 @@ static void correction_lut(void)
     }
 }
 
-CHECK_CASES({"classify_random", classify_random}, {"classify_special", classify_special},
+/* The public table API (vf_point_table, vf_preint_table) checks every argument, refuses a short scratch arena
+ * and a bad transfer function, and takes nothing from the arena whatever happens. */
+static void table_api_arguments(void)
+{
+    static _Alignas(16) unsigned char buf[1 << 20];
+    static uint16_t out[64 * 64 * 4];
+    vf_tf_point_t pts[2] = {{0, 65535, 0, 0, 0}, {65280, 0, 65535, 0, 40000}};
+    vf_tf_t tf = {pts, 2};
+    vf_arena_t arena;
+    vf_arena_init(&arena, buf, sizeof buf);
+    const uint32_t slab = 65536;
+    CHECK_EQ(vf_point_table(NULL, 64, slab, &arena, out), VF_ERR_NULL);
+    CHECK_EQ(vf_point_table(&tf, 64, slab, NULL, out), VF_ERR_NULL);
+    CHECK_EQ(vf_point_table(&tf, 64, slab, &arena, NULL), VF_ERR_NULL);
+    CHECK_EQ(vf_preint_table(NULL, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_NULL);
+    CHECK_EQ(vf_preint_table(&tf, 64, slab, VF_BUILDER_INCREMENTAL, NULL, out), VF_ERR_NULL);
+    CHECK_EQ(vf_preint_table(&tf, 64, slab, VF_BUILDER_INCREMENTAL, &arena, NULL), VF_ERR_NULL);
+    const uint32_t bad_n[] = {0, 1, VF_MAX_TABLE + 1, UINT32_MAX};
+    for (int i = 0; i < 4; i++) {
+        CHECK_EQ(vf_point_table(&tf, bad_n[i], slab, &arena, out), VF_ERR_ARG);
+        CHECK_EQ(vf_preint_table(&tf, bad_n[i], slab, VF_BUILDER_BRUTEFORCE, &arena, out), VF_ERR_ARG);
+        CHECK_EQ(vf_table_scratch_bytes(bad_n[i]), 0);
+    }
+    const uint32_t bad_slab[] = {0, (UINT32_C(128) << 16) + 1, UINT32_MAX};
+    for (int i = 0; i < 3; i++)
+        CHECK_EQ(vf_preint_table(&tf, 64, bad_slab[i], VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_ARG);
+    CHECK_EQ(vf_preint_table(&tf, 64, slab, VF_BUILDER_COUNT, &arena, out), VF_ERR_ARG);
+    CHECK_EQ(vf_preint_table(&tf, 64, slab, (vf_builder_t)-1, &arena, out), VF_ERR_ARG);
+    vf_tf_point_t down[2] = {{300, 0, 0, 0, 0}, {200, 0, 0, 0, 0}};
+    vf_tf_t bad = {down, 2};
+    CHECK_EQ(vf_preint_table(&bad, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_TF);
+    bad.count = 0;
+    CHECK_EQ(vf_point_table(&bad, 64, slab, &arena, out), VF_ERR_TF);
+    CHECK_EQ(arena.used, 0);
+    /* scratch: vf_table_scratch_bytes is enough even on a misaligned buffer (it counts the alignment); half of it
+     * is refused */
+    size_t need = vf_table_scratch_bytes(64);
+    CHECK(need > 0);
+    vf_arena_init(&arena, buf + 1, need);
+    size_t start = arena.used; /* the bytes skipped to align */
+    CHECK_EQ(vf_preint_table(&tf, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_OK);
+    CHECK_EQ(arena.used, start); /* the scratch is given back */
+    vf_arena_init(&arena, buf, need / 2);
+    CHECK_EQ(vf_preint_table(&tf, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_NOMEM);
+    CHECK_EQ(vf_point_table(&tf, 64, slab, &arena, out), VF_ERR_NOMEM);
+    CHECK_EQ(arena.used, 0);
+}
+
+CHECK_CASES({"table_api_arguments", table_api_arguments}, {"classify_random", classify_random}, {"classify_special", classify_special},
             {"classify_bad_keeps_previous", classify_bad_keeps_previous},
             {"entry_of_sample_exact", entry_of_sample_exact}, {"entry_of_scalar_table", entry_of_scalar_table},
             {"tables_random", tables_random}, {"tables_full_size", tables_full_size},
