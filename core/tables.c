@@ -94,7 +94,6 @@ void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, 
     const uint32_t n = cls->n, count = n - 1; /* count intervals */
     const vfi_seg_t *pre = scratch->prefix, *suf = scratch->suffix;
     const vfi_seg_t *back_pre = scratch->back_prefix, *back_suf = scratch->back_suffix;
-    const vfi_seg_t zero = {0, 0, 0, 0};
     for (uint32_t i = 0; i < n; i++) {
         vfi_seg_t s = point_seg(cls, i, slab_q16);
         store(out, (size_t)i * n + i, &s);
@@ -115,7 +114,9 @@ void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, 
             vfi_seg_t up, down;
             uint32_t split = f + r - in_block; /* where the next block starts (f + r when f starts one) */
             if (below[f + r] == below[f]) {
-                up = down = zero;
+                /* field by field: copying a zero aggregate can compile to a memset call (gcc -Os, Cortex-M4) */
+                up.r = up.g = up.b = up.a = 0;
+                down = up;
             } else if (in_block == 0 || below[f + r] == below[split]) { /* nothing visible in the prefix part */
                 up = suf[f];
                 down = back_suf[f];

@@ -12,6 +12,10 @@
 
 #define ONE_Q32 (INT64_C(1) << 32)
 
+/* A transparent pixel (Q1.15 r, g, b, a). Constant and file-wide because a local {0} array may compile to a
+ * memset call (gcc -Os for Cortex-M4 does), and the core calls nothing outside itself. */
+static const uint32_t transparent[4] = {0, 0, 0, 0};
+
 typedef struct warp_row {
     const vf_renderer_t *r;
     uint32_t fraction_mask; /* the warp's fraction bits kept (precision studies: fewer than 16) */
@@ -23,7 +27,7 @@ typedef struct warp_row {
 
 static void span(int64_t start, int64_t step, int64_t lo, int64_t hi, int64_t width, int64_t *x0, int64_t *x1);
 static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, unsigned char *dst);
-static void store_pixel(const warp_row_t *w, unsigned char *dst, uint32_t px[4]);
+static void store_pixel(const warp_row_t *w, unsigned char *dst, const uint32_t px[4]);
 
 vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint32_t y0, uint32_t y1)
 {
@@ -48,9 +52,8 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
         w.bg[c] = ((uint32_t)r->params.background[c] * VFI_ONE_Q15 + 65535u / 2) / 65535u;
         w.have_bg |= w.bg[c] != 0;
     }
-    uint32_t empty[4] = {0, 0, 0, 0};
     unsigned char background[4];
-    store_pixel(&w, background, empty);
+    store_pixel(&w, background, transparent);
 
     const int64_t iw = f->int_w, ih = f->int_h;
     const uint16_t *img = r->intermediate;
@@ -136,32 +139,33 @@ static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, uns
 {
     const vf_renderer_t *r = w->r;
     const int64_t iw = r->factor.int_w, ih = r->factor.int_h;
-    uint32_t out[4] = {0, 0, 0, 0};
     /* Shifted by one pixel, the support (-1, w) x (-1, h) is positive, and shifts act as floor. */
     int64_t us = u_q32 + ONE_Q32, vs = v_q32 + ONE_Q32;
-    if (us > 0 && vs > 0 && us < (iw + 1) * ONE_Q32 && vs < (ih + 1) * ONE_Q32) {
-        int32_t iu = (int32_t)(us >> 32) - 1, iv = (int32_t)(vs >> 32) - 1;
-        uint32_t fx = (uint32_t)(us >> 16) & w->fraction_mask, fy = (uint32_t)(vs >> 16) & w->fraction_mask;
-        uint32_t w11 = (fx * fy + 0x8000u) >> 16;
-        const uint32_t weight[4] = {65536u - fx - fy + w11, fx - w11, fy - w11, w11};
-        const int32_t du[4] = {0, 1, 0, 1}, dv[4] = {0, 0, 1, 1};
-        uint32_t acc[4] = {0x8000u, 0x8000u, 0x8000u, 0x8000u};
-        for (int n = 0; n < 4; n++) {
-            int32_t pu = iu + du[n], pv = iv + dv[n];
-            if (weight[n] == 0 || pu < 0 || pv < 0 || pu >= iw || pv >= ih)
-                continue;
-            const uint16_t *p = r->intermediate + ((size_t)pv * (size_t)iw + (size_t)pu) * 4;
-            for (int c = 0; c < 4; c++)
-                acc[c] += p[c] * weight[n]; /* at most 32768 * 65536 in all */
-        }
-        for (int c = 0; c < 4; c++)
-            out[c] = acc[c] >> 16;
+    if (!(us > 0 && vs > 0 && us < (iw + 1) * ONE_Q32 && vs < (ih + 1) * ONE_Q32)) {
+        store_pixel(w, dst, transparent);
+        return;
     }
-    store_pixel(w, dst, out);
+    int32_t iu = (int32_t)(us >> 32) - 1, iv = (int32_t)(vs >> 32) - 1;
+    uint32_t fx = (uint32_t)(us >> 16) & w->fraction_mask, fy = (uint32_t)(vs >> 16) & w->fraction_mask;
+    uint32_t w11 = (fx * fy + 0x8000u) >> 16;
+    const uint32_t weight[4] = {65536u - fx - fy + w11, fx - w11, fy - w11, w11};
+    const int32_t du[4] = {0, 1, 0, 1}, dv[4] = {0, 0, 1, 1};
+    uint32_t acc[4] = {0x8000u, 0x8000u, 0x8000u, 0x8000u};
+    for (int n = 0; n < 4; n++) {
+        int32_t pu = iu + du[n], pv = iv + dv[n];
+        if (weight[n] == 0 || pu < 0 || pv < 0 || pu >= iw || pv >= ih)
+            continue;
+        const uint16_t *p = r->intermediate + ((size_t)pv * (size_t)iw + (size_t)pu) * 4;
+        for (int c = 0; c < 4; c++)
+            acc[c] += p[c] * weight[n]; /* at most 32768 * 65536 in all */
+    }
+    for (int c = 0; c < 4; c++)
+        acc[c] >>= 16;
+    store_pixel(w, dst, acc);
 }
 
 /* C + (1 - A) background, packed. */
-static void store_pixel(const warp_row_t *w, unsigned char *dst, uint32_t px[4])
+static void store_pixel(const warp_row_t *w, unsigned char *dst, const uint32_t px[4])
 {
     uint32_t c[3];
     for (int n = 0; n < 3; n++) {

@@ -1,0 +1,185 @@
+/*
+ * gen_scene.c: a host program that writes the firmware's scene as a C header.
+ *
+ *   gen_scene VOLUME [volfix-sim render options] [--band-rows N] -o scene.h
+ *
+ * It takes exactly the scene options of `volfix-sim render` and loads the scene with the same code
+ * (sim_parse, sim_scene_load: the port's volume reader, default window, preset or transfer-function file,
+ * degrees to binary angle units), so the firmware starts from the very inputs the host renders: the voxels,
+ * dimensions, spacing, window, transfer-function points, parameters, view, size and format. Everything after
+ * that, the window, classification, tables, factorisation, compositing and warp, is the core's work on the
+ * target. The header also carries the memory sizes the firmware's static buffers need, measured here with the
+ * core's own size queries (a 64-bit host's figures are upper bounds for a 32-bit target: only the renderer
+ * struct differs, by its pointers); the firmware checks them again with the target's figures.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "options.h"
+#include "scene.h"
+
+static const char usage_head[] =
+    "usage: gen_scene VOLUME [options] [--band-rows N] -o SCENE.h\n"
+    "Write the scene of `volfix-sim render VOLUME [options]` as a C header for the mps2-an386 firmware.\n\n"
+    "  -o FILE              the header to write\n"
+    "  --band-rows N        intermediate rows the firmware composites per band (default 8): its scratch\n"
+    "                       buffer is sized for that many\n"
+    "  --arena-bytes N      give the firmware an arena of N bytes instead of the measured size (to test\n"
+    "                       that a short arena ends in VF_ERR_NOMEM)\n";
+
+static void emit_voxels(FILE *f, const vf_volume_t *v)
+{
+    static const char *const ctype[] = {"uint8_t", "int8_t", "uint16_t", "int16_t"};
+    const size_t n = (size_t)v->dims[0] * v->dims[1] * v->dims[2];
+    fprintf(f, "static const %s scene_voxels[%zu] = {", ctype[v->type], n);
+    for (size_t i = 0; i < n; i++) {
+        long value = v->type == VF_VOXEL_U8    ? ((const uint8_t *)v->voxels)[i]
+                     : v->type == VF_VOXEL_I8  ? ((const int8_t *)v->voxels)[i]
+                     : v->type == VF_VOXEL_U16 ? ((const uint16_t *)v->voxels)[i]
+                                               : ((const int16_t *)v->voxels)[i];
+        fprintf(f, "%s%ld,", i % 24 ? "" : "\n    ", value);
+    }
+    fprintf(f, "\n};\n\n");
+}
+
+/* Host sizes: the arena the renderer needs with its run lists for this transfer function, and a band's
+ * scratch. Returns 0, or 2 with err. */
+static int measure(const sim_scene_t *s, uint32_t band_rows, size_t *arena_bytes, size_t *scratch_bytes,
+                   char *err, size_t errlen)
+{
+    size_t bytes = 0;
+    vf_status_t st = vf_renderer_bytes(&s->params, &s->vol.core, &bytes);
+    /* the run lists are at most two values per cell and a row index per axis: a first guess that
+     * vf_renderer_needed_bytes then corrects */
+    size_t guess = bytes + 3 * (size_t)(s->vol.core.dims[0] + 1) * (s->vol.core.dims[1] + 1) *
+                               (s->vol.core.dims[2] + 1) * 4;
+    void *buffer = st == VF_OK ? malloc(guess) : NULL;
+    vf_arena_t arena;
+    vf_renderer_t *r = NULL;
+    if (st == VF_OK && !buffer)
+        st = VF_ERR_NOMEM;
+    if (st == VF_OK) {
+        vf_arena_init(&arena, buffer, guess);
+        st = vf_renderer_create(&r, &s->params, &s->vol.core, &arena);
+    }
+    if (st == VF_OK)
+        st = vf_renderer_set_window(r, s->window);
+    if (st == VF_OK) {
+        vf_tf_t tf = {s->points, s->npoints};
+        st = vf_renderer_set_tf(r, &tf);
+    }
+    if (st == VF_OK) {
+        *arena_bytes = vf_renderer_needed_bytes(r);
+        if (*arena_bytes < arena.peak)
+            *arena_bytes = arena.peak;
+        vf_view_t view = s->view;
+        st = vf_render_begin(r, &view, s->width, s->height);
+        /* the band height is fixed, so the scratch a band needs does not depend on the view */
+        *scratch_bytes = vf_band_scratch_bytes(r, band_rows);
+    }
+    free(buffer);
+    if (st != VF_OK) {
+        snprintf(err, errlen, "measuring the scene: %s", vf_status_text(st));
+        return 2;
+    }
+    return 0;
+}
+
+static int write_header(const char *path, const sim_scene_t *s, uint32_t band_rows, size_t arena_bytes,
+                        size_t scratch_bytes, int arena_override, char *err, size_t errlen)
+{
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot write", path);
+        return 2;
+    }
+    char about[512];
+    sim_scene_describe(s, about, sizeof about);
+    const vf_volume_t *v = &s->vol.core;
+    const vf_params_t *p = &s->params;
+    fprintf(f, "/* scene.h: written by boards/mps2-an386/gen_scene; do not edit.\n * %s */\n", about);
+    fprintf(f, "#include \"volfix.h\"\n\n");
+    fprintf(f, "#define SCENE_ABOUT \"%s\"\n", about);
+    fprintf(f, "#define SCENE_WIDTH %uu\n#define SCENE_HEIGHT %uu\n", s->width, s->height);
+    fprintf(f, "#define SCENE_FORMAT %d /* vf_format_t */\n#define SCENE_PIXEL_BYTES %uu\n", (int)s->format,
+            vf_format_bytes(s->format));
+    fprintf(f, "#define SCENE_BAND_ROWS %uu\n", band_rows);
+    fprintf(f, "/* %s on the host with the core's size queries; the firmware checks them on the target */\n",
+            arena_override ? "arena given with --arena-bytes, scratch measured" : "measured");
+    fprintf(f, "#define SCENE_ARENA_BYTES %zuu\n#define SCENE_SCRATCH_BYTES %zuu\n\n", arena_bytes, scratch_bytes);
+    emit_voxels(f, v);
+    fprintf(f, "static const vf_volume_t scene_volume = {{%u, %u, %u}, {%u, %u, %u}, %d, scene_voxels};\n",
+            v->dims[0], v->dims[1], v->dims[2], v->spacing_q16[0], v->spacing_q16[1], v->spacing_q16[2],
+            (int)v->type);
+    fprintf(f, "static const vf_window_t scene_window = {%d, %d};\n", s->window.lo, s->window.hi);
+    fprintf(f, "static const vf_tf_point_t scene_tf_points[%u] = {\n", s->npoints);
+    for (uint32_t i = 0; i < s->npoints; i++)
+        fprintf(f, "    {%u, %u, %u, %u, %u},\n", s->points[i].scalar_q8, s->points[i].r, s->points[i].g,
+                s->points[i].b, s->points[i].a);
+    fprintf(f, "};\n");
+    fprintf(f, "static const vf_view_t scene_view = {%d, %d, %d, %uu};\n", s->view.azimuth, s->view.elevation,
+            s->view.roll, s->view.zoom_q16);
+    fprintf(f, "static const vf_params_t scene_params = {\n"
+               "    .mode = %d, .table_size = %u, .table_bits = %u, .lookup = %d, .correction = %d,\n"
+               "    .buffer = %d, .background = {%u, %u, %u}, .sample_bits = %u, .intermediate_bits = %u,\n"
+               "    .warp_bits = %u,\n};\n",
+            (int)p->mode, p->table_size, p->table_bits, (int)p->lookup, (int)p->correction, (int)p->buffer,
+            p->background[0], p->background[1], p->background[2], p->sample_bits, p->intermediate_bits,
+            p->warp_bits);
+    if (fclose(f) != 0) {
+        snprintf(err, errlen, "%s: write failed", path);
+        return 2;
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    /* --band-rows and --arena-bytes are ours; everything else goes to volfix-sim's own parser */
+    long band_rows = 8, arena_override = 0;
+    int n = 0;
+    for (int i = 1; i < argc; i++) {
+        long *value = strcmp(argv[i], "--band-rows") == 0     ? &band_rows
+                      : strcmp(argv[i], "--arena-bytes") == 0 ? &arena_override
+                                                              : NULL;
+        if (!value) {
+            argv[++n] = argv[i];
+            continue;
+        }
+        char *end = NULL;
+        *value = i + 1 < argc ? strtol(argv[i + 1], &end, 10) : 0;
+        if (!end || *end || *value < 1 || *value > (value == &band_rows ? 65535 : 0x7FFFFFFF)) {
+            fprintf(stderr, "gen_scene: %s %s: expected a positive number%s\n", argv[i], i + 1 < argc ? argv[i + 1] : "",
+                    value == &band_rows ? " up to 65535" : "");
+            return 2;
+        }
+        i++;
+    }
+    char usage[4096], err[VFP_ERR_LEN];
+    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
+    sim_opts_t o;
+    int status = sim_parse(&o, n, argv + 1, SIM_OPT_SCENE | SIM_OPT_OUT, usage);
+    if (status)
+        return status == 1 ? 0 : 2;
+    if (!o.out) {
+        fprintf(stderr, "gen_scene: no output file (-o SCENE.h)\n");
+        return 2;
+    }
+    sim_scene_t scene;
+    if (sim_scene_load(&scene, &o, err, sizeof err)) {
+        fprintf(stderr, "gen_scene: %s\n", err);
+        return 2;
+    }
+    size_t arena_bytes = 0, scratch_bytes = 0;
+    status = measure(&scene, (uint32_t)band_rows, &arena_bytes, &scratch_bytes, err, sizeof err);
+    if (arena_override)
+        arena_bytes = (size_t)arena_override;
+    if (status == 0)
+        status = write_header(o.out, &scene, (uint32_t)band_rows, arena_bytes, scratch_bytes, arena_override != 0, err,
+                              sizeof err);
+    if (status)
+        fprintf(stderr, "gen_scene: %s\n", err);
+    sim_scene_free(&scene);
+    return status;
+}

@@ -1,0 +1,124 @@
+#!/bin/sh
+# The core on a microcontroller: builds the Cortex-M4 firmware for the MPS2 AN386 board (make mcu-firmware,
+# boards/mps2-an386), runs it in qemu-system-arm, and requires the frame hash it prints to equal the host's
+# `volfix-sim render SCENE --hash`, for the default scene and for one with every option changed; the firmware
+# must end through semihosting with status 0. Also: the comparison tells another view's frame apart, a short
+# arena ends in VF_ERR_NOMEM with status 2, the core at -Os calls nothing but libgcc's helpers, and its code
+# stays within the 24 KB budget.
+cd "$(dirname "$0")/../.." || exit 2
+build=${BUILD:-build}
+sim=$build/volfix-sim
+mcu=$build/mcu # one firmware build directory, reused by every scene below (the core is compiled once)
+data=${VOLFIX_DATA:-../shared/data}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+ok() { echo "ok - mcu/$1"; }
+fail() { echo "not ok - mcu/$1: $2"; }
+
+missing=""
+for tool in arm-none-eabi-gcc qemu-system-arm; do
+    command -v $tool >/dev/null || missing="$missing $tool"
+done
+if [ -n "$missing" ]; then
+    fail "tools" "missing:$missing (make test installs gcc-arm-none-eabi and qemu-system-arm)"
+    exit 0
+fi
+
+# The shared bucky volume when it is there; a fresh checkout without ../shared/data gets a phantom of its size.
+if [ -f "$data/bucky.nhdr" ]; then volume=$data/bucky.nhdr; else volume=phantom:shepp-logan:32; fi
+default="$volume --size 64x64 --format rgb565 --mode preint1 --preset ramp --view 30,20"
+# every option away from its default, a roll, a zoom and another principal axis; 5-row bands do not divide the
+# intermediate image, so the last band is a short one
+changed="$volume --size 48x40 --format xrgb8888 --mode preint1 --preset sharp --view 200,-40,15 --zoom 1.3"
+changed="$changed --table-size 64 --table-bits 8 --lookup bilinear --correction lut --buffer image"
+
+# firmware NAME SCENE BAND_ROWS [GEN_OPTS]: build it and run it; $tmp/NAME.out gets its output, $tmp/NAME.status
+# its exit status (124: the timeout ended it)
+firmware() {
+    name=$1 scene=$2 rows=$3 gen=${4:-}
+    if ! ${MAKE:-make} --no-print-directory BUILD="$build" MCU_BUILD="$mcu" MCU_SCENE="$scene" \
+        MCU_BAND_ROWS="$rows" MCU_GEN_OPTS="$gen" mcu-firmware >"$tmp/$name.build" 2>&1; then
+        fail "$name" "make mcu-firmware failed: $(grep -m 3 -iE 'error|undefined' "$tmp/$name.build" | tr '\n' ' ')"
+        return 1
+    fi
+    start=$(date +%s.%N)
+    timeout 60 qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none -semihosting \
+        -icount shift=0 -kernel "$mcu/fw.elf" >"$tmp/$name.out" 2>&1
+    echo $? >"$tmp/$name.status"
+    end=$(date +%s.%N)
+    echo "# $name: qemu ran $(awk "BEGIN { printf \"%.2f\", $end - $start }") s"
+    sed 's/^/# /' "$tmp/$name.out"
+}
+
+# same_frame FIRMWARE_OUT SCENE_OPTION...: the hash the firmware printed equals the host's for the scene
+same_frame() {
+    out=$1
+    shift
+    fw=$(sed -n 's/^hash \([0-9a-f]\{16\}\)$/\1/p' "$out")
+    host=$("$sim" render "$@" --hash 2>"$tmp/sim.err" | cut -d' ' -f1)
+    [ -n "$fw" ] && [ -n "$host" ] && [ "$fw" = "$host" ]
+}
+
+check_frame() { # NAME SCENE
+    name=$1 scene=$2
+    status=$(cat "$tmp/$name.status")
+    fw=$(sed -n 's/^hash //p' "$tmp/$name.out")
+    # shellcheck disable=SC2086
+    host=$("$sim" render $scene --hash 2>&1)
+    if [ "$status" != 0 ]; then
+        fail "$name frame" "the firmware exited with status $status: $(tail -n 2 "$tmp/$name.out" | tr '\n' ' ')"
+    elif ! same_frame "$tmp/$name.out" $scene; then
+        fail "$name frame" "firmware hash '$fw', host: $host"
+    else
+        ok "$name frame equals volfix-sim render's (hash $fw), exit status 0"
+    fi
+}
+
+# 1. the default scene, and the comparison's own check: the host's frame of another view must not match
+if firmware default "$default" 8; then
+    check_frame default "$default"
+    # shellcheck disable=SC2086
+    if same_frame "$tmp/default.out" $(echo "$default" | sed 's/--view 30,20/--view 31,20/'); then
+        fail "another view's hash" "the firmware's frame matched the host's frame of view 31,20"
+    elif [ -z "$(sed -n 's/^hash //p' "$tmp/default.out")" ]; then
+        fail "another view's hash" "the firmware printed no hash"
+    else
+        ok "another view's hash (31,20 against 30,20) is told apart"
+    fi
+    used=$(sed -n 's/^stack: \([0-9]*\) bytes used of \([0-9]*\)$/\1/p' "$tmp/default.out")
+    size=$(sed -n 's/^stack: \([0-9]*\) bytes used of \([0-9]*\)$/\2/p' "$tmp/default.out")
+    if [ -n "$used" ] && [ "$used" -gt 0 ] && [ "$used" -lt "$size" ]; then
+        ok "stack measured: $used of $size bytes"
+    else
+        fail "stack" "expected 'stack: N bytes used of M' with 0 < N < M: $(grep '^stack' "$tmp/default.out")"
+    fi
+
+    # the core's code: nothing outside it but the compiler's helpers, and within budget
+    arm-none-eabi-ld -r -o "$tmp/core.o" "$mcu"/core/*.o
+    calls=$(arm-none-eabi-nm -u "$tmp/core.o" | awk '{ print $2 }' | grep -v '^__aeabi_' | tr '\n' ' ')
+    if [ -z "$calls" ]; then ok "the core at -Os calls nothing but libgcc's __aeabi_ helpers"; else
+        fail "core calls" "calls outside the core: $calls"; fi
+    text=$(arm-none-eabi-size -t "$mcu"/core/*.o | awk 'END { print $1 }')
+    if [ "$text" -le 24576 ]; then ok "core .text $text bytes <= 24 KB"; else
+        fail "core .text" "$text bytes, over the 24 KB (24576) budget"; fi
+fi
+
+# 2. every option changed
+if firmware changed "$changed" 5; then
+    check_frame changed "$changed"
+fi
+
+# 3. an arena short of what the host measured for the changed scene: the target's renderer struct is smaller
+# than the host's (32-bit pointers), so 4 KB off to be short on any target
+measured=$(sed -n 's/^#define SCENE_ARENA_BYTES \([0-9]*\)u$/\1/p' "$mcu/scene.h" 2>/dev/null)
+short=$((${measured:-8192} - 4096))
+if firmware short "$changed" 5 "--arena-bytes $short"; then
+    status=$(cat "$tmp/short.status")
+    if [ "$status" = 2 ] && grep -q '^vf_renderer_set_tf: the arena or scratch buffer is too small$' "$tmp/short.out" &&
+        grep -q '^arena too small: [0-9]* bytes needed$' "$tmp/short.out"; then
+        ok "a short arena ends in VF_ERR_NOMEM, with the bytes needed, and exit status 2"
+    else
+        fail "short arena" "status $status: $(tr '\n' ' ' <"$tmp/short.out")"
+    fi
+fi
