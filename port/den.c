@@ -61,12 +61,10 @@ int vfpi_load_den(vfp_volume_t *vol, const char *path, char *err, size_t errlen)
     if (vfpi_check_dims(d, path, 0, err, errlen))
         return 2;
     uint32_t dims[3] = {(uint32_t)d[0], (uint32_t)d[1], (uint32_t)d[2]};
-    size_t bytes;
-    if (vfpi_alloc_voxels(vol, dims, VF_VOXEL_U8, &bytes, path, err, errlen))
-        return 2;
     /* .den files carry no voxel size: unit spacing. */
     for (int a = 0; a < 3; a++)
         vol->spacing[a] = 1.0;
     vfpi_source_t src = {.path = path, .byte_skip = HDR_BYTES};
-    return vfpi_read_data(&src, vol->data, bytes, err, errlen);
+    size_t bytes;
+    return vfpi_read_voxels(vol, dims, VF_VOXEL_U8, &src, &bytes, err, errlen);
 }

@@ -37,6 +37,7 @@ static int parse(script_t *s, const vfp_board_t *board, char *text, const char *
                  size_t errlen);
 static int parse_int(const char *s, long long min, long long max, long long *out);
 static char *read_file(const char *path, char *err, size_t errlen);
+static int printable(char *err, size_t errlen);
 
 const vfp_input_ops_t vfp_input_script_ops = {
     .name = "script",
@@ -73,7 +74,7 @@ fail:
     if (s)
         free(s->events);
     free(s);
-    return 2;
+    return printable(err, errlen);
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
@@ -89,7 +90,7 @@ static int script_open(vfp_input_t *in, const vfp_board_t *board, const char *sc
     }
     char *text = read_file(path, err, errlen);
     if (!text)
-        return 2;
+        return printable(err, errlen);
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     uint64_t now = (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
@@ -240,6 +241,18 @@ static int parse(script_t *s, const vfp_board_t *board, char *text, const char *
         }
     }
     return 0;
+}
+
+/* One printable line, always: a quoted word may carry a control byte from the file (a terminal escape, a form feed;
+ * found by tests/fuzz), as the volume and board readers' messages never do. Returns 2, for `return printable()`. */
+static int printable(char *err, size_t errlen)
+{
+    for (unsigned char *c = (unsigned char *)err; errlen && *c; c++)
+        if (*c == '\t')
+            *c = ' ';
+        else if (*c < 0x20 || *c == 0x7f)
+            *c = '?';
+    return 2;
 }
 
 static int parse_int(const char *s, long long min, long long max, long long *out)

@@ -81,11 +81,9 @@ int vfpi_load_nifti(vfp_volume_t *vol, const char *path, int gzip, char *err, si
     double vox_offset = 0.0;
     if (parse_header(vol, hdr, big, path, gzip, dims, &type, &vox_offset, err, errlen))
         return 2;
-    size_t bytes;
-    if (vfpi_alloc_voxels(vol, dims, type, &bytes, path, err, errlen))
-        return 2;
     vfpi_source_t src = {.path = path, .byte_skip = (int64_t)vox_offset, .gzip = gzip};
-    if (vfpi_read_data(&src, vol->data, bytes, err, errlen))
+    size_t bytes;
+    if (vfpi_read_voxels(vol, dims, type, &src, &bytes, err, errlen))
         return 2;
     if (vfpi_type_bytes(type) == 2)
         vfpi_to_native16(vol->data, bytes / 2, big);

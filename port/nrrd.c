@@ -481,9 +481,6 @@ static int check_header(header_t *h, vfp_volume_t *vol, char *err, size_t errlen
 
 static int read_voxels(header_t *h, vfp_volume_t *vol, char *err, size_t errlen)
 {
-    size_t bytes;
-    if (vfpi_alloc_voxels(vol, h->sizes, h->type, &bytes, h->path, err, errlen))
-        return 2;
     vfpi_source_t src = {.path = h->path, .offset = h->data_offset, .line_skip = h->line_skip,
                          .byte_skip = h->byte_skip, .gzip = h->gzip};
     char *data_path = NULL;
@@ -504,7 +501,8 @@ static int read_voxels(header_t *h, vfp_volume_t *vol, char *err, size_t errlen)
         src.note = note;
         src.offset = 0;
     }
-    int rc = vfpi_read_data(&src, vol->data, bytes, err, errlen);
+    size_t bytes;
+    int rc = vfpi_read_voxels(vol, h->sizes, h->type, &src, &bytes, err, errlen);
     free(data_path);
     if (rc)
         return rc;

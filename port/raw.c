@@ -37,9 +37,6 @@ int vfpi_load_raw(vfp_volume_t *vol, const char *path, const vfp_load_opts_t *op
         opts->type != VF_VOXEL_I16)
         return vfpi_fail(err, errlen, path, 0, "bad --type %d (expected uint8, int8, uint16 or int16)",
                          (int)opts->type);
-    size_t bytes;
-    if (vfpi_alloc_voxels(vol, opts->dims, opts->type, &bytes, path, err, errlen))
-        return 2;
     for (int a = 0; a < 3; a++)
         vol->spacing[a] = 1.0; /* volume.c applies --spacing */
 
@@ -48,7 +45,8 @@ int vfpi_load_raw(vfp_volume_t *vol, const char *path, const vfp_load_opts_t *op
     snprintf(note, sizeof note, "for --dims %u,%u,%u --type %s", opts->dims[0], opts->dims[1], opts->dims[2],
              type_name(opts->type));
     vfpi_source_t src = {.path = path, .note = note, .gzip = vfpi_has_suffix(path, ".gz")};
-    if (vfpi_read_data(&src, vol->data, bytes, err, errlen))
+    size_t bytes;
+    if (vfpi_read_voxels(vol, opts->dims, opts->type, &src, &bytes, err, errlen))
         return 2;
     if (vfpi_type_bytes(opts->type) == 2)
         vfpi_to_native16(vol->data, bytes / 2, opts->big_endian);

@@ -7,6 +7,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Mapped scalars (0..255 is the window) are kept within this far outside it: far enough that no output level
+ * changes (an edge value interpolated across 1e12 moves by less than 1e-10), near enough that a difference of two
+ * stays finite. A scalar of -1e308 in the file, times 255, is -inf, and the edge value between -inf and a point in
+ * the window was inf/inf, NaN, converted to uint16_t (undefined; found by tests/fuzz). */
+#define FAR_SCALAR 1e12
+
 typedef struct preset {
     const char *name;
     const char *about;
@@ -76,10 +82,18 @@ int vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
     }
     const char *base = strrchr(path, '/');
     snprintf(tf->name, sizeof tf->name, "%s", base ? base + 1 : path);
-    char line[512];
+    char *line = NULL;
+    size_t cap = 0;
+    ssize_t len;
     int lineno = 0, status = 0;
-    while (status == 0 && fgets(line, sizeof line, f)) {
+    /* Whole lines however long (fgets into a fixed buffer read the rest of a long comment as a line of its own). */
+    while (status == 0 && (len = getline(&line, &cap, f)) >= 0) {
         lineno++;
+        if ((size_t)len != strlen(line)) {
+            snprintf(err, errlen, "%s:%d: expected text, found a NUL byte", path, lineno);
+            status = 2;
+            break;
+        }
         char *hash = strchr(line, '#');
         if (hash)
             *hash = 0;
@@ -125,6 +139,7 @@ int vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
         snprintf(err, errlen, "%s: read error: %s", path, strerror(errno));
         status = 2;
     }
+    free(line);
     fclose(f);
     if (status == 0 && tf->count == 0) {
         snprintf(err, errlen, "%s: no control points (expected lines 'scalar r g b a')", path);
@@ -151,6 +166,7 @@ uint32_t vfp_tf_to_core(const vfp_tf_t *tf, const vfp_volume_t *vol, vf_window_t
         } else {
             mapped[i].s = tf->points[i].s * 255.0;
         }
+        mapped[i].s = mapped[i].s < -FAR_SCALAR ? -FAR_SCALAR : mapped[i].s > FAR_SCALAR ? FAR_SCALAR : mapped[i].s;
     }
     if (n > 1 && mapped[n - 1].s < mapped[0].s)
         for (int i = 0; i < n / 2; i++) {

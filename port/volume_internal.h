@@ -41,14 +41,20 @@ int vfpi_fail(char *err, size_t errlen, const char *name, unsigned line, const c
 int vfpi_read_head(const char *path, int gzip, unsigned char *buf, size_t cap, size_t *got, char *err,
                    size_t errlen);
 
-/* Reads exactly `bytes` bytes of voxel data; more or fewer bytes in the file (after the skips) is an error. */
-int vfpi_read_data(const vfpi_source_t *src, void *dst, size_t bytes, char *err, size_t errlen);
+/* Reads a file's voxels: sets vol->core.dims and type and mallocs vol->data for exactly dims x type bytes, which the
+ * file must hold (after the skips): more or fewer is an error. Nothing is allocated before the data is known to be
+ * there (uncompressed: the file's size; gzip: the buffer grows with the decompressed data), so a header that
+ * claims a huge volume fails with "truncated: expected N bytes of voxel data, found M", not out of memory. *bytes
+ * is the size read. On failure vol is untouched. */
+int vfpi_read_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, const vfpi_source_t *src,
+                     size_t *bytes, char *err, size_t errlen);
 
 /* Checks: each size 2..VF_MAX_DIM; a spacing finite, > 0, <= VFPI_MAX_SPACING and not 0 in Q16.16. */
 int vfpi_check_dims(const uint64_t dims[3], const char *name, unsigned line, char *err, size_t errlen);
 int vfpi_check_spacing(double spacing, int axis, const char *name, unsigned line, char *err, size_t errlen);
 
-/* Sets vol->core.dims and type and mallocs vol->data for them (exactly, products checked for overflow). */
+/* Sets vol->core.dims and type and mallocs vol->data for them (exactly, products checked for overflow): for volumes
+ * made in memory (phantoms, downsampled copies); a file's voxels come through vfpi_read_voxels. */
 int vfpi_alloc_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, size_t *bytes,
                       const char *name, char *err, size_t errlen);
 

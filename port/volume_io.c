@@ -20,6 +20,7 @@
  *********************/
 #define IN_BYTES (64 * 1024)      /* compressed bytes read at a time */
 #define DISCARD_BYTES (64 * 1024) /* scratch for skipping and counting surplus bytes */
+#define FIRST_BYTES (1 << 20)     /* gzip'd voxels: the buffer's first size; it doubles as the data keeps coming */
 
 /**********************
  *      TYPES
@@ -47,9 +48,9 @@ static int stream_refill(stream_t *s, const vfpi_source_t *src, char *err, size_
 static int stream_skip(stream_t *s, const vfpi_source_t *src, uint64_t n, uint64_t *skipped, char *err,
                        size_t errlen);
 static int skip_lines(FILE *file, const vfpi_source_t *src, char *err, size_t errlen);
-static int read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, void *dst, size_t bytes, char *err,
+static int read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, size_t bytes, void **out, char *err,
                       size_t errlen);
-static int read_gzip(stream_t *s, const vfpi_source_t *src, void *dst, size_t bytes, char *err, size_t errlen);
+static int read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, void **out, char *err, size_t errlen);
 static int src_fail(char *err, size_t errlen, const vfpi_source_t *src, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 
@@ -92,11 +93,17 @@ int vfpi_read_head(const char *path, int gzip, unsigned char *buf, size_t cap, s
     return 0;
 }
 
-int vfpi_read_data(const vfpi_source_t *src, void *dst, size_t bytes, char *err, size_t errlen)
+int vfpi_read_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, const vfpi_source_t *src,
+                     size_t *bytes, char *err, size_t errlen)
 {
+    /* dims are at most VF_MAX_DIM (2^12) each: the product fits 64 bits, but may not fit a 32-bit size_t. */
+    uint64_t n = (uint64_t)dims[0] * dims[1] * dims[2] * vfpi_type_bytes(type);
+    if (n > (uint64_t)SIZE_MAX)
+        return src_fail(err, errlen, src, "volume of %llu bytes is too large for this machine", (unsigned long long)n);
     stream_t s;
     if (stream_open(&s, src, err, errlen))
         return 2;
+    void *data = NULL;
     int rc;
     if (src->offset && fseeko(s.file, (off_t)src->offset, SEEK_SET) != 0)
         rc = src_fail(err, errlen, src, "cannot seek to byte %llu: %s", (unsigned long long)src->offset,
@@ -107,16 +114,23 @@ int vfpi_read_data(const vfpi_source_t *src, void *dst, size_t bytes, char *err,
         if (src->byte_skip < 0)
             rc = src_fail(err, errlen, src, "byte skip -1 works only for uncompressed data");
         else
-            rc = read_gzip(&s, src, dst, bytes, err, errlen);
+            rc = read_gzip(&s, src, (size_t)n, &data, err, errlen);
     } else {
         struct stat st;
         if (fstat(fileno(s.file), &st) != 0 || !S_ISREG(st.st_mode))
             rc = src_fail(err, errlen, src, "not a regular file (uncompressed data is read from regular files)");
         else
-            rc = read_plain(s.file, src, (uint64_t)st.st_size, dst, bytes, err, errlen);
+            rc = read_plain(s.file, src, (uint64_t)st.st_size, (size_t)n, &data, err, errlen);
     }
     stream_close(&s);
-    return rc;
+    if (rc)
+        return rc;
+    vol->data = data;
+    for (int a = 0; a < 3; a++)
+        vol->core.dims[a] = dims[a];
+    vol->core.type = type;
+    *bytes = (size_t)n;
+    return 0;
 }
 
 int vfpi_check_dims(const uint64_t dims[3], const char *name, unsigned line, char *err, size_t errlen)
@@ -352,7 +366,9 @@ static int skip_lines(FILE *file, const vfpi_source_t *src, char *err, size_t er
     return 0;
 }
 
-static int read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, void *dst, size_t bytes, char *err,
+/* Checks that the file holds exactly `bytes` bytes of data (after the skips) before it allocates them: a header
+ * that claims a huge volume costs nothing when the data is not there. */
+static int read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, size_t bytes, void **out, char *err,
                       size_t errlen)
 {
     off_t here = ftello(file);
@@ -381,14 +397,23 @@ static int read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes,
     }
     if (fseeko(file, (off_t)start, SEEK_SET) != 0)
         return src_fail(err, errlen, src, "cannot seek to byte %llu: %s", (unsigned long long)start, strerror(errno));
+    void *dst = malloc(bytes);
+    if (!dst)
+        return src_fail(err, errlen, src, "out of memory for %zu bytes of voxels", bytes);
     size_t got = fread(dst, 1, bytes, file);
-    if (got != bytes)
-        return src_fail(err, errlen, src, "read error after %zu of %zu bytes: %s", got, bytes,
-                        ferror(file) ? strerror(errno) : "the file shrank while it was read");
+    if (got != bytes) {
+        int rc = src_fail(err, errlen, src, "read error after %zu of %zu bytes: %s", got, bytes,
+                          ferror(file) ? strerror(errno) : "the file shrank while it was read");
+        free(dst);
+        return rc;
+    }
+    *out = dst;
     return 0;
 }
 
-static int read_gzip(stream_t *s, const vfpi_source_t *src, void *dst, size_t bytes, char *err, size_t errlen)
+/* The decompressed size is known only by decompressing, so the buffer grows with the data (doubling, up to
+ * `bytes`): a small file that claims a huge volume is found short after allocating about what it holds. */
+static int read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, void **out, char *err, size_t errlen)
 {
     uint64_t skipped;
     if (stream_skip(s, src, (uint64_t)src->byte_skip, &skipped, err, errlen))
@@ -396,18 +421,40 @@ static int read_gzip(stream_t *s, const vfpi_source_t *src, void *dst, size_t by
     if (skipped < (uint64_t)src->byte_skip)
         return src_fail(err, errlen, src, "truncated: the data should start at byte %lld after decompression, but "
                         "there are only %llu bytes", (long long)src->byte_skip, (unsigned long long)skipped);
-    size_t got;
-    if (stream_read(s, src, dst, bytes, &got, err, errlen))
-        return 2;
-    if (got < bytes)
-        return src_fail(err, errlen, src, "truncated: expected %zu bytes of voxel data after decompression, "
-                        "found %zu", bytes, got);
+    size_t cap = bytes < FIRST_BYTES ? bytes : FIRST_BYTES, got = 0;
+    unsigned char *dst = malloc(cap);
+    int rc = 0;
+    for (;;) {
+        size_t more;
+        if (!dst) {
+            rc = src_fail(err, errlen, src, "out of memory for %zu bytes of voxels", cap);
+            break;
+        }
+        if ((rc = stream_read(s, src, dst + got, cap - got, &more, err, errlen)) != 0)
+            break;
+        got += more;
+        if (got < cap || cap == bytes)
+            break; /* the end of the data, or all of it */
+        cap = cap > bytes / 2 ? bytes : cap * 2;
+        unsigned char *grown = realloc(dst, cap);
+        if (!grown)
+            free(dst);
+        dst = grown;
+    }
+    if (rc == 0 && got < bytes)
+        rc = src_fail(err, errlen, src, "truncated: expected %zu bytes of voxel data after decompression, found %zu",
+                      bytes, got);
     /* Count the surplus so the message can say how much there is (a wrong header is the usual cause). */
-    uint64_t extra;
-    if (stream_skip(s, src, UINT64_MAX, &extra, err, errlen))
-        return 2;
-    if (extra)
-        return src_fail(err, errlen, src, "expected %zu bytes of voxel data after decompression, found %llu%s", bytes,
-                        (unsigned long long)(bytes + extra), src->note ? "" : " (more than the sizes and type say)");
+    uint64_t extra = 0;
+    if (rc == 0)
+        rc = stream_skip(s, src, UINT64_MAX, &extra, err, errlen);
+    if (rc == 0 && extra)
+        rc = src_fail(err, errlen, src, "expected %zu bytes of voxel data after decompression, found %llu%s", bytes,
+                      (unsigned long long)(bytes + extra), src->note ? "" : " (more than the sizes and type say)");
+    if (rc) {
+        free(dst);
+        return rc;
+    }
+    *out = dst;
     return 0;
 }

@@ -146,6 +146,10 @@ static void bad_lines(void)
     EXPECT_BAD("0 release\n", "s.script:1: expected 'TIME_MS release BUTTON'");
     EXPECT_BAD("0 quit now\n", "s.script:1: expected 'TIME_MS quit'");
     EXPECT_BAD("0 press 0 1 2 3 4 5 6\n", "s.script:1: expected 'TIME_MS press BUTTON'");
+    /* A control byte quoted from the script becomes '?': the message stays one printable line (found by
+     * tests/fuzz: "quit\x1a" came back with its byte). */
+    EXPECT_BAD("2000 quit\032\n", "s.script:1: unknown event 'quit?' (expected turn, press, release or quit)");
+    EXPECT_BAD("0 turn \033[2J 1\n", "s.script:1: turn: expected a knob from 0 to 1, found '?[2J'");
 
     /* a board without knobs says so */
     vfp_board_t b = board_2x2();

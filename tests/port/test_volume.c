@@ -494,6 +494,34 @@ static void error_size_mismatch(void)
     fx_expect_error(p, NULL, p, "truncated: the data should start at byte");
 }
 
+/* A header that claims the largest volume (4096^3 int16, 128 GiB) over a few bytes of data: the data's size is
+ * checked before the voxels are allocated (found by tests/fuzz; before, the reader allocated first and failed
+ * "out of memory", or aborted under the sanitizers). Attached, detached and gzip'd. */
+static void error_huge_sizes_without_data(void)
+{
+    const char *fields = HEAD "type: int16\ndimension: 3\nsizes: 4096 4096 4096\nendian: little\n";
+    char header[256];
+    snprintf(header, sizeof header, "%sencoding: raw\n", fields);
+    const char *p = attached_sized("huge.nrrd", header, 0);
+    fx_expect_error(p, NULL, p, FX_HUGE(": truncated: expected 137438953472 bytes of voxel data, found 60"));
+
+    unsigned char data[FX_COUNT];
+    fx_bytes(VF_VOXEL_U8, 0, data);
+    const char *raw = fx_write("huge.raw", NULL, data, FX_COUNT);
+    snprintf(header, sizeof header, "%sencoding: raw\ndata file: huge.raw\n", fields);
+    p = fx_write("huge.nhdr", header, NULL, 0);
+    fx_expect_error(p, NULL, raw,
+                    FX_HUGE(": truncated: expected 137438953472 bytes of voxel data, found 60 (data file named by"));
+
+    size_t gz_n;
+    unsigned char *gz = fx_gzip_bytes(data, FX_COUNT, &gz_n);
+    snprintf(header, sizeof header, "%sencoding: gzip\n\n", fields);
+    p = fx_write("huge-gz.nrrd", header, gz, gz_n);
+    free(gz);
+    fx_expect_error(p, NULL, p,
+                    FX_HUGE(": truncated: expected 137438953472 bytes of voxel data after decompression, found 60"));
+}
+
 static void error_detached_data(void)
 {
     const char *p = fx_write("lost.nhdr", HEAD U8_FIELDS "data file: missing.raw\n", NULL, 0);
@@ -588,5 +616,6 @@ CHECK_CASES({"nrrd_attached_uint8", nrrd_attached_uint8}, {"spacing_anisotropy_l
             {"error_multi_file_data", error_multi_file_data},
             {"error_size_mismatch", error_size_mismatch},
             {"error_detached_data", error_detached_data},
+            {"error_huge_sizes_without_data", error_huge_sizes_without_data},
             {"error_gzip", error_gzip});
 CHECK_RUN("volume")

@@ -355,6 +355,67 @@ static void raw_errors(void)
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
+/* Headers that claim more than the file holds (found by tests/fuzz): the size is checked against the file before
+ * the voxels are allocated, and a gzip'd file's buffer grows with what it decompresses to, so a few bytes that
+ * claim 128 GiB get the usual one-line "truncated" error, not an attempt to allocate it (which failed with "out
+ * of memory", or aborted under the sanitizers). */
+
+static void huge_claims_without_data(void)
+{
+    nii_t h = nii_fixture(VF_VOXEL_I16, 0);
+    h.dim[1] = h.dim[2] = h.dim[3] = VF_MAX_DIM;
+    const char *p = nii_write("huge.nii", &h, VF_VOXEL_I16, 100);
+    fx_expect_error(p, NULL, p, FX_HUGE(": truncated: expected 137438953472 bytes of voxel data, found 100"));
+    p = nii_write("huge.nii.gz", &h, VF_VOXEL_I16, 100);
+    fx_expect_error(p, NULL, p,
+                    FX_HUGE(": truncated: expected 137438953472 bytes of voxel data after decompression, found 100"));
+
+    /* .den: map_length is 32 bits, so 1024^3 is about the most one can claim. */
+    unsigned char data[FX_COUNT * 2], file[62 + FX_COUNT];
+    fx_bytes(VF_VOXEL_U8, 0, data);
+    const uint16_t dims[3] = {1024, 1024, 1024};
+    size_t n = den_file(1, dims, 1u << 30, data, FX_COUNT, file);
+    p = fx_write("huge.den", NULL, file, n);
+    fx_expect_error(p, NULL, p, ": truncated: expected 1073741824 bytes of voxel data, found 60");
+
+    vfp_load_opts_t opts = {.have_dims = 1, .dims = {VF_MAX_DIM, VF_MAX_DIM, VF_MAX_DIM}, .have_type = 1,
+                            .type = VF_VOXEL_U16};
+    n = fx_bytes(VF_VOXEL_U16, 0, data);
+    p = fx_write("huge.raw", NULL, data, n);
+    fx_expect_error(p, &opts, p,
+                    FX_HUGE(": truncated: expected 137438953472 bytes of voxel data, found 120 (for --dims "
+                            "4096,4096,4096 --type uint16)"));
+    p = fx_write_gz("huge.raw.gz", data, n);
+    fx_expect_error(p, &opts, p,
+                    FX_HUGE(": truncated: expected 137438953472 bytes of voxel data after decompression, found 120"));
+}
+
+/* More than the first buffer of gzip'd voxels (1 MiB): it grows as the data comes and holds every byte; one byte
+ * fewer or more is still an error that says how many there are. */
+static void gzip_larger_than_first_buffer(void)
+{
+    enum { X = 128, Y = 128, Z = 40 }; /* 1.25 MiB of uint16 */
+    size_t bytes = (size_t)X * Y * Z * 2;
+    unsigned char *data = malloc(bytes + 1);
+    CHECK(data != NULL);
+    for (size_t i = 0; i <= bytes; i++)
+        data[i] = (unsigned char)(i * 7919u >> 3);
+    vfp_load_opts_t opts = {.have_dims = 1, .dims = {X, Y, Z}, .have_type = 1, .type = VF_VOXEL_U16};
+    const char *p = fx_write_gz("big.raw.gz", data, bytes), *shorter = fx_write_gz("big-1.raw.gz", data, bytes - 1),
+               *longer = fx_write_gz("big+1.raw.gz", data, bytes + 1);
+    vfp_volume_t vol;
+    int rc = fx_load(&vol, p, &opts);
+    int same = rc == 0 && memcmp(vol.data, data, bytes) == 0;
+    free(data);
+    CHECK_EQ(rc, 0);
+    vfp_volume_free(&vol);
+    CHECK(same);
+    fx_expect_error(shorter, &opts, shorter, ": truncated: expected 1310720 bytes of voxel data after decompression, "
+                                             "found 1310719");
+    fx_expect_error(longer, &opts, longer, ": expected 1310720 bytes of voxel data after decompression, found 1310721");
+}
+
+/* ---------------------------------------------------------------------------------------------------------- */
 /* Phantoms */
 
 static uint8_t at(const vfp_volume_t *vol, uint32_t i, uint32_t j, uint32_t k)
@@ -590,6 +651,8 @@ CHECK_CASES({"nifti_int16_little_with_scaling", nifti_int16_little_with_scaling}
             {"den_errors", den_errors},
             {"raw_good", raw_good},
             {"raw_errors", raw_errors},
+            {"huge_claims_without_data", huge_claims_without_data},
+            {"gzip_larger_than_first_buffer", gzip_larger_than_first_buffer},
             {"phantom_marschner_lobb", phantom_marschner_lobb},
             {"phantom_shepp_logan", phantom_shepp_logan},
             {"phantom_sphere", phantom_sphere},

@@ -1,0 +1,56 @@
+/* fuzz_tf.c: a transfer-function file (vfp_tf_load, as x.tf), then what the programs do with one: map it through
+ * the windows of an 8-bit and a 16-bit volume (vfp_tf_to_core), move it as the level and width knobs do
+ * (vfp_tf_move), and hand the points to the core, which must accept them (vf_point_table). */
+#include "fuzz.h"
+#include "tf.h"
+
+#define TABLE_SIZE 32
+
+/* The points for one volume and window, and the core's table from them. */
+static void to_core(const vfp_tf_t *tf, const vfp_volume_t *vol, vf_window_t window)
+{
+    static vf_tf_point_t points[VF_MAX_TF_POINTS];
+    uint32_t n = vfp_tf_to_core(tf, vol, window, points);
+    if (n < 1 || n > VF_MAX_TF_POINTS)
+        abort();
+    vf_tf_t core_tf = {points, n};
+    size_t bytes = vf_table_scratch_bytes(TABLE_SIZE);
+    void *scratch = malloc(bytes);
+    uint16_t table[TABLE_SIZE * 4];
+    vf_arena_t arena;
+    vf_arena_init(&arena, scratch, bytes);
+    if (!scratch || vf_point_table(&core_tf, TABLE_SIZE, 65536, &arena, table) != VF_OK)
+        abort();
+    free(scratch);
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    fz_begin();
+    const char *path = fz_write("x.tf", data, size);
+    vfp_tf_t tf;
+    char err[VFP_ERR_LEN];
+    if (vfp_tf_load(&tf, path, err, sizeof err) != 0) {
+        fz_check_error(err, path);
+        return 0;
+    }
+    fz_show(NULL);
+    /* An 8-bit volume with its full window; 16-bit CT with a NIfTI slope and intercept; and a negative slope,
+     * whose window runs downwards. Only the type, slope and intercept matter here. */
+    vfp_volume_t u8, ct, flipped;
+    memset(&u8, 0, sizeof u8);
+    u8.slope = 1;
+    ct = u8;
+    ct.core.type = VF_VOXEL_I16;
+    ct.slope = 0.5;
+    ct.inter = -1024;
+    flipped = ct;
+    flipped.slope = -2;
+    to_core(&tf, &u8, (vf_window_t){0, 255});
+    to_core(&tf, &ct, (vf_window_t){1800, 4400});
+    to_core(&tf, &flipped, (vf_window_t){200, -300});
+    vfp_tf_t moved = tf;
+    vfp_tf_move(&moved, &ct, (vf_window_t){1800, 4400}, 0.25, 3);
+    to_core(&moved, &ct, (vf_window_t){1800, 4400});
+    return 0;
+}

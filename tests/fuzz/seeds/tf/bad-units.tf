@@ -1,0 +1,2 @@
+units furlongs
+0 0 0 0 0
