@@ -6,6 +6,10 @@
 #   make bench      benchmarks (timings are never asserted in tests)
 #   make test-hw    the GPIO and USB display backends against real kernel interfaces in a Linux VM (qemu;
 #                   tests/hw/README.md); downloads a Debian kernel and libgpiod 2.x into $(BUILD)/hw the first time
+#   make test-cross the same frames bit for bit on aarch64 and 32-bit ARM (cross compilers, qemu-user)
+#   make fuzz       every parser under libFuzzer with ASan and UBSan for FUZZ_SECONDS each (clang; tests/fuzz)
+#   make test-asan  every test built with AddressSanitizer and UndefinedBehaviorSanitizer
+#   make test-long  the viewer for 10,000 frames (flat memory) and under valgrind
 #   make clean
 #
 # CROSS_COMPILE=aarch64-linux-gnu- builds with a cross compiler. SAN=1 builds with ASan and UBSan.
@@ -13,15 +17,37 @@
 CROSS_COMPILE ?=
 CC      := $(CROSS_COMPILE)gcc
 AR      := $(CROSS_COMPILE)ar
+
+# ---- Cross builds: settings (make CROSS_COMPILE=aarch64-linux-gnu- or arm-linux-gnueabihf-; make test-cross) ----
+# A build directory of their own (build-aarch64, build-armhf, unless BUILD is given); static executables, so that
+# qemu-user runs them with no target root file system and they copy to a board as they are; the target's zlib and
+# libpng from CROSS_SYSROOT (default: Debian's -dev packages for the target, unpacked into $(BUILD)/sysroot by
+# tools/cross-sysroot.sh; CROSS_SYSROOT= uses the compiler's own paths, for multiarch -dev packages); pkg-config
+# looks at the target's .pc files only, so an optional backend the target lacks is left out (one message each).
+ifneq ($(CROSS_COMPILE),)
+  CROSS_TRIPLET := $(patsubst %-,%,$(CROSS_COMPILE))
+  CROSS_ARCH    := $(if $(filter %-gnueabihf,$(CROSS_TRIPLET)),armhf,$(firstword $(subst -, ,$(CROSS_TRIPLET))))
+  CROSS_DEBARCH := $(if $(filter aarch64,$(CROSS_ARCH)),arm64,$(CROSS_ARCH))
+  BUILD         ?= build-$(CROSS_ARCH)
+  CROSS_SYSROOT ?= $(BUILD)/sysroot
+  CROSS_CFLAGS  := $(if $(CROSS_SYSROOT),-I$(CROSS_SYSROOT)/usr/include)
+  LDFLAGS       += -static $(if $(CROSS_SYSROOT),-L$(CROSS_SYSROOT)/usr/lib/$(CROSS_TRIPLET))
+  PKG_CONFIG    ?= PKG_CONFIG_LIBDIR=/usr/lib/$(CROSS_TRIPLET)/pkgconfig:/usr/share/pkgconfig pkg-config --static
+endif
+# ---- end of cross-build settings; the rules are in the block "make test-cross" below ----
+
 BUILD   ?= build
 OPT     ?= -O2
+# make run, test and the other test targets build with every processor, unless make was given its own -j
+JOBS     = $(if $(filter -j%,$(MAKEFLAGS)),,-j$(shell getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1))
 
 # The core: freestanding C99, integer only, no libc.
 CORE_CFLAGS := -std=c99 -ffreestanding -fno-builtin -Wall -Wextra -Wpedantic -Werror -Wshadow \
                -Wstrict-prototypes -Wmissing-prototypes -Wconversion -Wno-sign-conversion -fno-tree-loop-distribute-patterns $(OPT) -g
-# Everything else: hosted C11 with POSIX.
-HOST_CFLAGS := -std=c11 -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Wshadow $(OPT) -g \
-               -Icore -Iport -Ihost-sim
+# Everything else: hosted C11 with POSIX. 64-bit file offsets and inode numbers on 32-bit targets too (armhf: readdir
+# failed with EOVERFLOW on a file system with 64-bit inodes, so boards/ looked empty; make test-cross found it).
+HOST_CFLAGS := -std=c11 -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L -D_FILE_OFFSET_BITS=64 -Wall -Wextra -Wshadow $(OPT) -g \
+               -Icore -Iport -Ihost-sim $(CROSS_CFLAGS)
 ifeq ($(SAN),1)
   SANFLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
   CORE_CFLAGS += $(SANFLAGS)
@@ -31,7 +57,7 @@ endif
 CORE_CFLAGS += $(EXTRA_CFLAGS)
 
 PKG_CONFIG ?= pkg-config
-PORT_LIBS  := -lz -lpng -lpthread -lm
+PORT_LIBS  := -lpng -lz -lpthread -lm
 
 # Optional backends, compiled in when pkg-config finds their library (port/display.h, port/input.h). A private
 # libgpiod (the 2.x test in make test-hw) comes in through GPIOD_PKG_CONFIG_PATH.
@@ -138,12 +164,12 @@ deps:
 
 run: DEPS_FOR = run
 run: deps
-	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory $(JOBS) all
 	@sh tools/demo.sh
 
 test: DEPS_FOR = test
 test: deps
-	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory $(JOBS) all
 	@sh tests/run.sh
 
 bench: all
@@ -165,8 +191,180 @@ $(BUILD)/hw/bin:
 
 test-hw: DEPS_FOR = hw
 test-hw: deps
-	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory $(JOBS) all
 	@BUILD=$(BUILD) MAKE="$(MAKE)" sh tests/hw/run.sh
+
+# ---- make test-cross: the same frames, bit for bit, on x86-64, aarch64 and 32-bit ARM (tests/cross/run.sh) ----
+# Builds $(BUILD) natively and $(BUILD)-aarch64, $(BUILD)-armhf with the cross compilers (settings at the top), runs
+# the cross-built test suites under qemu-user and compares `volfix-sim render --hash` of a fixed set of scenes with
+# the native ones. CROSS_COMPILE builds print which optional backends they leave out.
+CROSS_TARGETS := aarch64-linux-gnu-:aarch64 arm-linux-gnueabihf-:armhf
+.PHONY: test-cross
+test-cross: DEPS_FOR = cross
+test-cross: deps
+	@$(MAKE) --no-print-directory $(JOBS) all
+	@$(foreach t,$(CROSS_TARGETS),$(MAKE) --no-print-directory $(JOBS) CROSS_COMPILE=$(word 1,$(subst :, ,$(t))) \
+	     BUILD=$(BUILD)-$(word 2,$(subst :, ,$(t))) all &&) true
+	@sh tests/cross/run.sh $(BUILD) $(foreach t,$(CROSS_TARGETS),$(BUILD)-$(word 2,$(subst :, ,$(t))))
+
+ifneq ($(CROSS_COMPILE),)
+$(foreach b,libdrm libusb-1.0 liblz4 sdl2 libgpiod,$(if $(call have,$(b)),,$(info volfix: $(CROSS_TRIPLET): no $(b) for the target, its backend is left out)))
+ifneq ($(CROSS_SYSROOT),)
+$(PORT_OBJ) $(SIM_OBJ) $(BUILD)/$(SIM_MAIN:.c=.o) $(VIEWER_OBJ) $(TEST_LIB) $(TEST_BIN) $(HW_BIN): | $(CROSS_SYSROOT)/.unpacked
+$(CROSS_SYSROOT)/.unpacked:
+	sh tools/cross-sysroot.sh $(CROSS_DEBARCH) $(CROSS_TRIPLET) $(CROSS_SYSROOT)
+endif
+endif
+# ---- end of make test-cross ----
+
+# ---- Fuzzing: make fuzz, and the fuzz regression replay in make test (tests/fuzz/README.md) ----
+# Every parser has a libFuzzer harness, tests/fuzz/fuzz_NAME.c (one LLVMFuzzerTestOneInput each).
+# make test: each harness is also built with the normal compiler and flags (so SAN=1 too) and tests/fuzz/replay.c's
+#   main() as $(BUILD)/tests/fuzz/replay_NAME; tests/fuzz/replay.sh feeds it every file of tests/fuzz/seeds/ and
+#   tests/fuzz/regress/ (inputs that once found a bug).
+# make fuzz [FUZZ_SECONDS=60] [FUZZ_JOBS=N]: builds the harnesses with clang, libFuzzer, ASan and UBSan in
+#   $(FUZZ_BUILD) (core and port compiled the same way; the optional backends left out) and runs each for
+#   FUZZ_SECONDS, FUZZ_JOBS at a time (default: the processors online), with its corpus in
+#   $(FUZZ_BUILD)/corpus/NAME seeded from tests/fuzz/seeds/NAME (tools/fuzz.sh). One line per harness; fails if
+#   one crashed, leaked, hung or ran out of memory, with the input kept in $(FUZZ_BUILD)/crashes/NAME/.
+FUZZ_SRC    := $(wildcard tests/fuzz/fuzz_*.c)
+FUZZ_NAMES  := $(FUZZ_SRC:tests/fuzz/fuzz_%.c=%)
+FUZZ_REPLAY := $(FUZZ_NAMES:%=$(BUILD)/tests/fuzz/replay_%)
+
+all: $(FUZZ_REPLAY)
+
+# --wrap: replay.c's malloc, calloc and realloc refuse what no input needs, as the fuzzer's -malloc_limit_mb does.
+FUZZ_WRAP   := -Wl,--wrap=malloc -Wl,--wrap=calloc -Wl,--wrap=realloc
+$(BUILD)/tests/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c tests/fuzz/fuzz.h $(LIBPORT) $(LIBVOLFIX) \
+                              | $(BUILD)/tests/fuzz
+	$(CC) $(HOST_CFLAGS) -Itests/fuzz -o $@ $< tests/fuzz/replay.c $(LIBPORT) $(LIBVOLFIX) $(LDFLAGS) $(FUZZ_WRAP) \
+	      $(PORT_LIBS)
+
+$(BUILD)/tests/fuzz:
+	mkdir -p $@
+
+FUZZ_CC      ?= clang
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_JOBS    ?=
+FUZZ_CFLAGS  := -std=c11 -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Wshadow -O1 -g -Icore -Iport \
+                -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_OBJ     := $(CORE_SRC:%.c=$(FUZZ_BUILD)/%.o) $(PORT_SRC:%.c=$(FUZZ_BUILD)/%.o)
+FUZZ_LIB     := $(FUZZ_BUILD)/libvolfix-fuzz.a
+FUZZ_BIN     := $(FUZZ_NAMES:%=$(FUZZ_BUILD)/fuzz_%)
+
+.PHONY: fuzz fuzz-build
+fuzz: DEPS_FOR = fuzz
+fuzz: deps
+	@$(MAKE) --no-print-directory $(JOBS) fuzz-build
+	@FUZZ_JOBS=$(FUZZ_JOBS) sh tools/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_NAMES)
+
+fuzz-build: $(FUZZ_BIN)
+
+$(FUZZ_BUILD)/core/%.o: core/%.c $(wildcard core/*.h)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c $< -o $@
+
+$(FUZZ_BUILD)/port/%.o: port/%.c $(wildcard core/volfix.h core/vf_config.h port/*.h)
+	@mkdir -p $(@D)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c $< -o $@
+
+$(FUZZ_LIB): $(FUZZ_OBJ)
+	rm -f $@ && ar rcs $@ $^
+
+$(FUZZ_BUILD)/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz.h $(FUZZ_LIB)
+	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer -Itests/fuzz -o $@ $< $(FUZZ_LIB) -lpng -lz -lpthread -lm
+# ---- end of fuzzing ----
+
+# ---- make mcu: the core on a Cortex-M4 microcontroller, and a firmware for the MPS2 AN386 board -------------
+# The core is built for a Cortex-M4 with Debian's arm-none-eabi-gcc (Thumb-2, -Os, soft-float ABI: the core has
+# no floating point; one section per function so that the link drops what the firmware does not call) into
+# MCU_BUILD, then linked with boards/mps2-an386 (startup, semihosting, main; no libc, only libgcc's division
+# helpers) into MCU_BUILD/fw.elf, which qemu-system-arm -M mps2-an386 runs. The firmware's scene comes from
+# gen_scene, a host program linked against this build's libraries that takes the same options as volfix-sim
+# render (MCU_SCENE), so the firmware's frame hash must equal `volfix-sim render $(MCU_SCENE) --hash`.
+#   make mcu        build, print .text/.data/.bss of the core (per object, compiled and as linked) and firmware
+#   make mcu-run    also run the firmware under qemu: its frame hash and memory report
+# tests/mcu/mcu.sh (make test) runs it against the host's hash. Uses the native compiler for gen_scene.
+MCU_BUILD     ?= build-mcu
+MCU_CROSS     ?= arm-none-eabi-
+VOLFIX_DATA   ?= ../shared/data
+MCU_SCENE     ?= $(VOLFIX_DATA)/bucky.nhdr --size 64x64 --format rgb565 --mode preint1 --preset ramp --view 30,20
+MCU_BAND_ROWS ?= 8
+MCU_GEN_OPTS  ?=
+MCU_DIR       := boards/mps2-an386
+MCU_ARCH      := -mcpu=cortex-m4 -mthumb -mfloat-abi=soft
+MCU_OPT       := -Os -g -ffunction-sections -fdata-sections -fno-tree-loop-distribute-patterns
+# the core's own rules (CORE_CFLAGS without the host's optimisation, sanitizers and extra flags)
+MCU_CORE_CFLAGS := -std=c99 -ffreestanding -fno-builtin -Wall -Wextra -Wpedantic -Werror -Wshadow \
+                   -Wstrict-prototypes -Wmissing-prototypes -Wconversion -Wno-sign-conversion $(MCU_ARCH) $(MCU_OPT)
+MCU_FW_CFLAGS   := -std=c99 -ffreestanding -fno-builtin -Wall -Wextra -Werror -Wshadow $(MCU_ARCH) $(MCU_OPT) \
+                   -Icore -I$(MCU_BUILD)
+MCU_CORE_OBJ  := $(CORE_SRC:%.c=$(MCU_BUILD)/%.o)
+MCU_FW_OBJ    := $(MCU_BUILD)/fw/startup.o $(MCU_BUILD)/fw/semihost.o $(MCU_BUILD)/fw/main.o
+MCU_ELF       := $(MCU_BUILD)/fw.elf
+# -icount shift=0: the guest's clock advances one nanosecond per instruction, so the firmware's timer ticks
+# (25 MHz) count instructions / 40, the same on any host
+MCU_QEMU      := qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none -semihosting -icount shift=0
+
+.PHONY: mcu mcu-run mcu-firmware mcu-force
+mcu: DEPS_FOR = mcu
+mcu: deps
+	@$(MAKE) --no-print-directory $(JOBS) mcu-firmware
+	@sh $(MCU_DIR)/sizes.sh $(MCU_CROSS) $(MCU_BUILD)
+
+mcu-run: DEPS_FOR = mcu
+mcu-run: mcu
+	@$(MCU_QEMU) -kernel $(MCU_ELF); status=$$?; echo "firmware exit status $$status"; exit $$status
+
+mcu-firmware: $(MCU_ELF)
+
+$(MCU_BUILD)/core/%.o: core/%.c $(wildcard core/*.h)
+	@mkdir -p $(@D)
+	$(MCU_CROSS)gcc $(MCU_CORE_CFLAGS) -c $< -o $@
+
+$(MCU_BUILD)/libvolfix.a: $(MCU_CORE_OBJ)
+	rm -f $@ && $(MCU_CROSS)ar rcs $@ $^
+
+$(MCU_BUILD)/gen_scene: $(MCU_DIR)/gen_scene.c $(LIBSIM) $(LIBPORT) $(LIBVOLFIX) $(wildcard host-sim/*.h port/*.h)
+	@mkdir -p $(@D)
+	$(CC) $(HOST_CFLAGS) -o $@ $< $(LIBSIM) $(LIBPORT) $(LIBVOLFIX) $(LDFLAGS) $(PORT_LIBS)
+
+# the scene's options, rewritten only when they change, so that a new MCU_SCENE regenerates the header
+$(MCU_BUILD)/scene.args: mcu-force
+	@mkdir -p $(@D)
+	@echo '$(MCU_SCENE) --band-rows $(MCU_BAND_ROWS) $(MCU_GEN_OPTS)' | cmp -s - $@ || \
+	 echo '$(MCU_SCENE) --band-rows $(MCU_BAND_ROWS) $(MCU_GEN_OPTS)' >$@
+
+$(MCU_BUILD)/scene.h: $(MCU_BUILD)/gen_scene $(MCU_BUILD)/scene.args
+	$(MCU_BUILD)/gen_scene $(MCU_SCENE) --band-rows $(MCU_BAND_ROWS) $(MCU_GEN_OPTS) -o $@
+
+$(MCU_BUILD)/fw/%.o: $(MCU_DIR)/%.c $(wildcard $(MCU_DIR)/*.h) core/volfix.h $(MCU_BUILD)/scene.h
+	@mkdir -p $(@D)
+	$(MCU_CROSS)gcc $(MCU_FW_CFLAGS) -c $< -o $@
+
+# -nostdlib: nothing from a C library, so a libc call anywhere (a memset the compiler made up included) fails
+# the link; libgcc only for the 64-bit division helpers (__aeabi_uldivmod, __aeabi_ldivmod).
+$(MCU_ELF): $(MCU_FW_OBJ) $(MCU_BUILD)/libvolfix.a $(MCU_DIR)/mps2-an386.ld
+	$(MCU_CROSS)gcc $(MCU_ARCH) -nostdlib -T $(MCU_DIR)/mps2-an386.ld -Wl,--gc-sections \
+	    -Wl,-Map=$(MCU_BUILD)/fw.map -o $@ $(MCU_FW_OBJ) $(MCU_BUILD)/libvolfix.a -lgcc
+# ---- end of make mcu ----------------------------------------------------------------------------------------
+
+# ---- make test-asan and make test-long -------------------------------------------------------------------------
+# test-asan: everything built with AddressSanitizer and UndefinedBehaviorSanitizer (SAN=1: -fsanitize=address,
+# undefined -fno-sanitize-recover=all) in $(BUILD)-asan, then the whole suite; any report fails its test.
+# test-long: the viewer for 10,000 frames (memory must stay flat) and a session under valgrind (tests/long/run.sh).
+.PHONY: test-asan test-long
+test-asan: DEPS_FOR = test
+test-asan: deps
+	@$(MAKE) --no-print-directory $(JOBS) SAN=1 BUILD=$(BUILD)-asan all
+	@BUILD=$(BUILD)-asan sh tests/run.sh
+
+test-long: DEPS_FOR = test
+test-long: deps
+	@$(MAKE) --no-print-directory $(JOBS) all
+	@BUILD=$(BUILD) sh tests/long/run.sh
+# ---- end of test-asan and test-long ------------------------------------------------------------------------------
 
 clean:
 	rm -rf $(BUILD) out

@@ -1,17 +1,47 @@
 #!/bin/sh
 # Install the Debian packages that `make run` or `make test` need, when they are missing.
 # As root it runs apt-get itself; otherwise it prints the one command to run and fails.
-# Usage: tools/deps.sh run|test|hw
+# Usage: tools/deps.sh run|test|hw|fuzz|mcu|cross
 set -u
 for_what=${1:-run}
 
 # the core and volfix-sim; the viewer's backends (displays, knobs) come with their libraries when present
-need="gcc make pkg-config zlib1g-dev libpng-dev gnuplot-nox libdrm-dev libusb-1.0-0-dev liblz4-dev libsdl2-dev libgpiod-dev"
+need="gcc libc6-dev make pkg-config zlib1g-dev libpng-dev gnuplot-nox"
+need="$need libdrm-dev libusb-1.0-0-dev liblz4-dev libsdl2-dev libgpiod-dev"
 case "$for_what" in
-  test) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf valgrind umockdev libumockdev-dev xvfb xauth xdotool imagemagick" ;;
+  test) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf libc6-dev-arm64-cross libc6-dev-armhf-cross"
+        need="$need valgrind umockdev libumockdev-dev xvfb xauth xdotool imagemagick"
+        need="$need gcc-arm-none-eabi qemu-system-arm" ;; # tests/mcu: the firmware for a Cortex-M4 board under qemu
   # make test-hw: a Debian kernel in qemu (TCG), an initramfs from busybox, the gpio-sim module built out of tree
   hw) need="$need qemu-system-x86 busybox-static cpio kmod xz-utils gzip gcc-12 make binutils" ;;
+  # make fuzz: clang and its libFuzzer, ASan and UBSan runtimes (compiler-rt)
+  fuzz) need="$need clang libclang-rt-14-dev" ;;
+  # make mcu: the core and a firmware for a Cortex-M4 (arm-none-eabi-gcc), run on the MPS2 AN386 board in qemu
+  mcu) need="$need gcc-arm-none-eabi qemu-system-arm" ;;
+  # make test-cross: Debian's cross compilers with their C libraries, and qemu-user to run what they build; the
+  # target's zlib and libpng come from apt's lists for arm64 and armhf (tools/cross-sysroot.sh), added below
+  cross) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf libc6-dev-arm64-cross libc6-dev-armhf-cross"
+         need="$need qemu-user" ;;
 esac
+
+# make test-cross downloads the targets' -dev packages: apt must know the two architectures.
+foreign=""
+if [ "$for_what" = cross ]; then
+  for arch in arm64 armhf; do
+    dpkg --print-foreign-architectures | grep -qx "$arch" || foreign="$foreign $arch"
+  done
+fi
+if [ -n "$foreign" ]; then
+  if [ "$(id -u)" != 0 ]; then
+    echo "volfix: apt does not know the architectures$foreign; run this once, then try again:" >&2
+    echo "volfix:   sudo sh -c '$(for a in $foreign; do printf 'dpkg --add-architecture %s && ' "$a"; done)apt-get update'" >&2
+    exit 1
+  fi
+  echo "volfix: adding the architectures$foreign to apt (for the cross builds' zlib and libpng)"
+  for arch in $foreign; do dpkg --add-architecture "$arch" || exit 1; done
+  apt-get update -q >/tmp/volfix-apt.log 2>&1 ||
+    { tail -n 20 /tmp/volfix-apt.log >&2; echo "volfix: apt-get update failed (log: /tmp/volfix-apt.log)" >&2; exit 1; }
+fi
 
 missing=""
 for p in $need; do
@@ -31,6 +61,8 @@ fi
 echo "volfix: installing$missing"
 export DEBIAN_FRONTEND=noninteractive
 # Install from the current package lists first; refresh them only if that fails (they may be stale or absent).
-apt-get install -y -q $missing >/tmp/volfix-apt.log 2>&1 ||
-  { apt-get update -q >>/tmp/volfix-apt.log 2>&1 && apt-get install -y -q $missing >>/tmp/volfix-apt.log 2>&1; } ||
+# --no-install-recommends: what is listed is what is needed (gcc-arm-none-eabi alone recommends 1.5 GB of newlib).
+apt-get install -y -q --no-install-recommends $missing >/tmp/volfix-apt.log 2>&1 ||
+  { apt-get update -q >>/tmp/volfix-apt.log 2>&1 &&
+    apt-get install -y -q --no-install-recommends $missing >>/tmp/volfix-apt.log 2>&1; } ||
   { tail -n 20 /tmp/volfix-apt.log >&2; echo "volfix: apt-get install failed (log: /tmp/volfix-apt.log)" >&2; exit 1; }

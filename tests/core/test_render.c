@@ -132,8 +132,9 @@ static int sample_entry(const vf_volume_t *vol, const vf_factor_t *f, uint32_t n
                 continue; /* a neighbour beyond the last voxel has weight 0: do not read it */
             s += standard(vol, f, i0 + a, j0 + b, k) * wx * wy;
         }
-    unsigned __int128 num = (unsigned __int128)s * (n - 1) * 2 + (unsigned __int128)255 * ((uint64_t)1 << 32);
-    return (int)(num / ((unsigned __int128)510 << 32));
+    /* exact in 64 bits (32-bit targets have no __int128): s <= 255 2^32 < 2^40, N <= 1024, num < 2^52 */
+    uint64_t num = s * (n - 1) * 2 + (uint64_t)255 * ((uint64_t)1 << 32);
+    return (int)(num / ((uint64_t)510 << 32));
 }
 
 /* The same Q1.15 blend the spec describes (C += (1 - A) C_seg, A += (1 - A) a_seg), rounded to nearest. */

@@ -23,17 +23,18 @@ static uint32_t rnd(uint32_t n)
     return (uint32_t)(rnd64() % n);
 }
 
-/* s = clamp(round((v - lo) 255 / (hi - lo)), 0, 255), round half up, exactly */
+/* s = clamp(round((v - lo) 255 / (hi - lo)), 0, 255), round half up, exactly. v, lo and hi are int32 values, so
+ * |num| < 2^41 and every step is exact in int64 (32-bit targets have no __int128). */
 static int spec_window(int64_t v, int64_t lo, int64_t hi)
 {
-    __int128 num = (__int128)(v - lo) * 255, den = hi - lo;
+    int64_t num = (v - lo) * 255, den = hi - lo;
     if (den < 0) {
         num = -num;
         den = -den;
     }
     /* floor((2 num + den) / (2 den)) with floor division */
-    __int128 a = 2 * num + den, b = 2 * den;
-    __int128 q = a / b;
+    int64_t a = 2 * num + den, b = 2 * den;
+    int64_t q = a / b;
     if (a % b != 0 && a < 0)
         q--;
     return q < 0 ? 0 : q > 255 ? 255 : (int)q;
