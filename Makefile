@@ -358,7 +358,7 @@ $(MCU_ELF): $(MCU_FW_OBJ) $(MCU_BUILD)/libvolfix.a $(MCU_DIR)/mps2-an386.ld
 test-asan: DEPS_FOR = test
 test-asan: deps
 	@$(MAKE) --no-print-directory $(JOBS) SAN=1 BUILD=$(BUILD)-asan all
-	@BUILD=$(BUILD)-asan sh tests/run.sh
+	@SAN=1 BUILD=$(BUILD)-asan sh tests/run.sh
 
 test-long: DEPS_FOR = test
 test-long: deps

@@ -37,7 +37,7 @@ changed="$changed --table-size 64 --table-bits 8 --lookup bilinear --correction 
 # its exit status (124: the timeout ended it)
 firmware() {
     name=$1 scene=$2 rows=$3 gen=${4:-}
-    if ! ${MAKE:-make} --no-print-directory BUILD="$build" MCU_BUILD="$mcu" MCU_SCENE="$scene" \
+    if ! ${MAKE:-make} --no-print-directory BUILD="$build" SAN="${SAN:-}" MCU_BUILD="$mcu" MCU_SCENE="$scene" \
         MCU_BAND_ROWS="$rows" MCU_GEN_OPTS="$gen" mcu-firmware >"$tmp/$name.build" 2>&1; then
         fail "$name" "make mcu-firmware failed: $(grep -m 3 -iE 'error|undefined' "$tmp/$name.build" | tr '\n' ' ')"
         return 1
