@@ -3,6 +3,7 @@
  * board_check.c takes over once the last line is read (defaults, and checks across keys), and board_names.c holds
  * the long name tables (board_internal.h). */
 #include "board_internal.h"
+#include "printable.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -109,13 +110,9 @@ int vfpi_board_fail(vfpi_board_parser_t *p, int line, const char *fmt, ...)
         snprintf(p->err, p->errlen, "%s:%d: %s", p->path, line, msg);
     else
         snprintf(p->err, p->errlen, "%s: %s", p->path, msg);
-    /* One printable line, always: a quoted key or value may carry a vertical tab, a carriage return or a terminal
-     * escape from the file (found by tests/fuzz), as volume_io.c's vfpi_fail() says for the volume readers. */
-    for (unsigned char *c = (unsigned char *)p->err; p->errlen && *c; c++)
-        if (*c == '\t')
-            *c = ' ';
-        else if (*c < 0x20 || *c == 0x7f)
-            *c = '?';
+    /* a quoted key or value may carry a vertical tab or a terminal escape from the file (found by tests/fuzz) */
+    if (p->errlen)
+        vfp_printable(p->err);
     return 2;
 }
 

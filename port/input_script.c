@@ -11,6 +11,7 @@
  * due at now_ns, each stamped with its scheduled time (not the time it was read), so a run is reproducible. */
 #include "input.h"
 #include "input_backends.h"
+#include "printable.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -243,15 +244,12 @@ static int parse(script_t *s, const vfp_board_t *board, char *text, const char *
     return 0;
 }
 
-/* One printable line, always: a quoted word may carry a control byte from the file (a terminal escape, a form feed;
- * found by tests/fuzz), as the volume and board readers' messages never do. Returns 2, for `return printable()`. */
+/* A quoted word may carry a control byte from the file (a terminal escape, a form feed; found by tests/fuzz).
+ * Returns 2, for `return printable()`. */
 static int printable(char *err, size_t errlen)
 {
-    for (unsigned char *c = (unsigned char *)err; errlen && *c; c++)
-        if (*c == '\t')
-            *c = ' ';
-        else if (*c < 0x20 || *c == 0x7f)
-            *c = '?';
+    if (errlen)
+        vfp_printable(err);
     return 2;
 }
 

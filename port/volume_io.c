@@ -3,6 +3,7 @@
  *      INCLUDES
  *********************/
 #include "volume_internal.h"
+#include "printable.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -69,12 +70,7 @@ int vfpi_fail(char *err, size_t errlen, const char *name, unsigned line, const c
         vsnprintf(err + n, errlen - (size_t)n, fmt, ap);
         va_end(ap);
     }
-    /* One printable line, always: a file name or a quoted header value could carry a newline or binary junk. */
-    for (unsigned char *c = (unsigned char *)err; *c; c++)
-        if (*c == '\t')
-            *c = ' ';
-        else if (*c < 0x20 || *c == 0x7f)
-            *c = '?';
+    vfp_printable(err); /* a file name or a quoted header value could carry a newline or binary junk */
     return 2;
 }
 
