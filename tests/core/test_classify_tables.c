@@ -786,7 +786,8 @@ static void table_api_arguments(void)
     CHECK_EQ(arena.used, 0);
 }
 
-CHECK_CASES({"table_api_arguments", table_api_arguments}, {"classify_random", classify_random}, {"classify_special", classify_special},
+CHECK_CASES({"table_api_arguments", table_api_arguments}, {"classify_random", classify_random},
+            {"classify_special", classify_special},
             {"classify_bad_keeps_previous", classify_bad_keeps_previous},
             {"entry_of_sample_exact", entry_of_sample_exact}, {"entry_of_scalar_table", entry_of_scalar_table},
             {"tables_random", tables_random}, {"tables_full_size", tables_full_size},

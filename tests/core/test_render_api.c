@@ -387,7 +387,44 @@ static void two_renderers(void)
     CHECK(memcmp(pixels[0], pixels[1], 30 * 30 * 3) == 0);
 }
 
-CHECK_CASES({"state_machine", state_machine}, {"bad_tf_keeps_picture", bad_tf_keeps_picture},
+/* The calls that return no status take NULL and out-of-range values without harm and say so in what they return:
+ * 0, NULL, a name that is not another's, an output left as it was. */
+static void null_and_range_safe(void)
+{
+    vf_arena_init(NULL, arena_buf, sizeof arena_buf);
+    vf_arena_t arena;
+    vf_arena_init(&arena, NULL, 1000); /* no buffer: no room */
+    CHECK_EQ(arena.size, 0);
+    vf_params_default(NULL);
+    CHECK_EQ(vf_renderer_needed_bytes(NULL), 0);
+    vf_memory_t m;
+    memset(&m, 0xA5, sizeof m);
+    vf_renderer_memory(NULL, &m);
+    unsigned char *bytes = (unsigned char *)&m;
+    for (size_t i = 0; i < sizeof m; i++)
+        CHECK_EQ(bytes[i], 0xA5);
+    CHECK(vf_renderer_params(NULL) == NULL);
+    CHECK(vf_render_factor(NULL) == NULL);
+    CHECK(vf_render_intermediate(NULL) == NULL);
+    CHECK(vf_render_preint_table(NULL) == NULL);
+    CHECK(vf_render_point_table(NULL) == NULL);
+    const char *names[] = {vf_lookup_name(VF_LOOKUP_COUNT), vf_correction_name(VF_CORRECTION_COUNT),
+                           vf_buffer_name(VF_BUFFER_COUNT), vf_mode_name((vf_mode_t)-1)};
+    for (int n = 0; n < 4; n++)
+        CHECK(names[n] != NULL && names[n][0] != 0);
+    CHECK(strcmp(vf_lookup_name(VF_LOOKUP_COUNT), vf_lookup_name(VF_LOOKUP_NEAREST)) != 0);
+    CHECK(strcmp(vf_buffer_name(VF_BUFFER_COUNT), vf_buffer_name(VF_BUFFER_SLICE)) != 0);
+    scene_t s;
+    s.vol = volume_of(8, 9, 10);
+    fill_random(&s.vol);
+    CHECK_EQ(scene_create(&s, VF_MODE_PREINT1, 64), VF_OK);
+    vf_renderer_memory(s.r, NULL);
+    vf_renderer_memory(s.r, &m);
+    CHECK(m.total > 0 && m.total <= s.arena.used);
+}
+
+CHECK_CASES({"null_and_range_safe", null_and_range_safe}, {"state_machine", state_machine},
+            {"bad_tf_keeps_picture", bad_tf_keeps_picture},
             {"tf_change_inside_frame", tf_change_inside_frame}, {"create_arguments", create_arguments},
             {"status_texts", status_texts}, {"two_renderers", two_renderers});
 CHECK_RUN("core/render_api")
