@@ -11,11 +11,27 @@
 #define ONE_Q30 (UINT64_C(1) << 30)
 #define HALF_Q30 (UINT64_C(1) << 29)
 
+/* One diagonal of the 2D table while the incremental builder makes it: windows of r intervals, whose pieces
+ * are all d / r long. */
+typedef struct diagonal {
+    const vfi_seg_t *iv;       /* [n - 1] the intervals for pieces of that length */
+    const uint16_t *visible;   /* which intervals can be seen at all, ascending */
+    vfi_seg_t *suf, *back_suf; /* a block's suffix composites, by position in visible */
+    uint32_t n, r, last_f;     /* entries a table axis; intervals a window; where the last window starts */
+    vfi_table_out_t out;
+} diagonal_t;
+
 static vfi_seg_t point_seg(const vfi_classify_t *cls, uint32_t i, uint32_t slab_q16);
 static uint32_t opacity_q30(uint64_t tau_length_q28);
-static void intervals_for_length(const vfi_classify_t *cls, uint64_t length_q28, vfi_seg_t *out);
-static void block_composites(const vfi_table_scratch_t *scratch, uint32_t count, uint32_t r);
+static uint32_t list_visible(const vfi_classify_t *cls, vfi_seg_t *iv, uint16_t *visible);
+static void intervals_for_length(const vfi_classify_t *cls, uint64_t length_q28, const uint16_t *visible,
+                                 uint32_t visible_count, vfi_seg_t *out);
+static uint64_t piece_length_q28(uint32_t slab_q16, uint32_t r);
+static void block_suffixes(const diagonal_t *d, uint32_t k_lo, uint32_t k_hi);
+static void join_block(const diagonal_t *d, uint32_t s0, uint32_t k_lo, uint32_t k_hi);
 static inline void store(vfi_table_out_t out, size_t entry, const vfi_seg_t *s);
+static inline void store_pair(vfi_table_out_t out, size_t up, size_t down, const vfi_seg_t *s, const vfi_seg_t *back_s);
+static inline void copy_pair(vfi_table_out_t out, size_t up, size_t down, size_t distance);
 
 size_t vfi_table_scratch_bytes(uint32_t n)
 {
@@ -29,9 +45,9 @@ vf_status_t vfi_table_scratch_alloc(vfi_table_scratch_t *scratch, uint32_t n, vf
     scratch->suffix = vfi_arena_alloc(arena, sizeof(vfi_seg_t) * (n - 1));
     scratch->back_prefix = vfi_arena_alloc(arena, sizeof(vfi_seg_t) * (n - 1));
     scratch->back_suffix = vfi_arena_alloc(arena, sizeof(vfi_seg_t) * (n - 1));
-    scratch->visible_below = vfi_arena_alloc(arena, sizeof(uint16_t) * n);
+    scratch->visible = vfi_arena_alloc(arena, sizeof(uint16_t) * n);
     return scratch->interval && scratch->prefix && scratch->suffix && scratch->back_prefix && scratch->back_suffix &&
-                   scratch->visible_below
+                   scratch->visible
                ? VF_OK
                : VF_ERR_NOMEM;
 }
@@ -92,100 +108,123 @@ void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, 
                                   vfi_table_out_t out)
 {
     const uint32_t n = cls->n, count = n - 1; /* count intervals */
-    const vfi_seg_t *pre = scratch->prefix, *suf = scratch->suffix;
-    const vfi_seg_t *back_pre = scratch->back_prefix, *back_suf = scratch->back_suffix;
     for (uint32_t i = 0; i < n; i++) {
         vfi_seg_t s = point_seg(cls, i, slab_q16);
         store(out, (size_t)i * n + i, &s);
     }
-    /* visible_below[m]: intervals below m with some extinction; a window without one is exactly zero */
-    uint16_t *below = scratch->visible_below;
-    below[0] = 0;
-    for (uint32_t m = 0; m < count; m++)
-        below[m + 1] = (uint16_t)(below[m] + ((cls->tau_q28[m] | cls->tau_q28[m + 1]) != 0));
-
+    const uint32_t visible_count = list_visible(cls, scratch->interval, scratch->visible);
+    diagonal_t d;
+    d.iv = scratch->interval;
+    d.visible = scratch->visible;
+    d.suf = scratch->suffix;
+    d.back_suf = scratch->back_suffix;
+    d.n = n;
+    d.out = out;
     for (uint32_t r = 1; r < n; r++) {
-        intervals_for_length(cls, vfi_udiv64(((uint64_t)slab_q16 << 12) + r / 2, r), scratch->interval);
-        block_composites(scratch, count, r);
-        /* The window of intervals f .. f+r-1 is the suffix of f's block in front of the prefix of the next block
-         * up to f+r-1 (or, starting on a block boundary, one whole block); met from the back (front entry f + r,
-         * back entry f) it is the back prefix of that next block in front of the back suffix of f's block. */
-        for (uint32_t f = 0, in_block = 0; f + r < n; f++, in_block = in_block + 1 == r ? 0 : in_block + 1) {
-            vfi_seg_t up, down;
-            uint32_t split = f + r - in_block; /* where the next block starts (f + r when f starts one) */
-            if (below[f + r] == below[f]) {
-                /* field by field: copying a zero aggregate can compile to a memset call (gcc -Os, Cortex-M4) */
-                up.r = up.g = up.b = up.a = 0;
-                down = up;
-            } else if (in_block == 0 || below[f + r] == below[split]) { /* nothing visible in the prefix part */
-                up = suf[f];
-                down = back_suf[f];
-            } else if (below[split] == below[f]) { /* nothing visible in the suffix part */
-                up = pre[f + r - 1];
-                down = back_pre[f + r - 1];
-            } else {
-                up = over(&suf[f], &pre[f + r - 1]);
-                down = over(&back_pre[f + r - 1], &back_suf[f]);
-            }
-            store(out, (size_t)f * n + f + r, &up);
-            store(out, (size_t)(f + r) * n + f, &down);
+        intervals_for_length(cls, piece_length_q28(slab_q16, r), scratch->visible, visible_count, scratch->interval);
+        d.r = r;
+        d.last_f = count - r;
+        /* The windows of r intervals, f .. f+r-1, start at f = 0 .. count - r. Cut into blocks of r, each block
+         * that holds a window's start is whole. k_lo .. k_hi - 1: where the block's visible intervals are listed. */
+        for (uint32_t s0 = 0, k_lo = 0; s0 <= d.last_f; s0 += r) {
+            uint32_t k_hi = k_lo;
+            while (k_hi < visible_count && d.visible[k_hi] < s0 + r)
+                k_hi++;
+            block_suffixes(&d, k_lo, k_hi);
+            join_block(&d, s0, k_lo, k_hi);
+            k_lo = k_hi;
         }
     }
 }
 
-/* One step of the suffix chains (from the block's end down to m) and of the prefix chains (from the block's start
- * up to m). An empty interval (opacity 0, so colour 0) leaves a composite as it was: no arithmetic, which is
- * most of the work saved for transfer functions with narrow peaks. */
-static inline void chain_down(const vfi_seg_t *iv, vfi_seg_t *suf, vfi_seg_t *back_suf, uint32_t m)
+/* The composites of the block's visible intervals k_lo .. k_hi - 1 (positions in the list) from each to the
+ * block's end: suffix[k] front to back and back_suffix[k] back to front. The block's other intervals are zero
+ * and leave a composite as it is (see join_block), so skipping them changes no bit; for transfer functions
+ * with narrow peaks that is most of the work. */
+static void block_suffixes(const diagonal_t *d, uint32_t k_lo, uint32_t k_hi)
 {
-    if (iv[m].a == 0) {
-        suf[m] = suf[m + 1];
-        back_suf[m] = back_suf[m + 1];
-    } else {
-        suf[m] = over(&iv[m], &suf[m + 1]);
-        back_suf[m] = over(&back_suf[m + 1], &iv[m]);
+    const vfi_seg_t *iv = d->iv;
+    const uint16_t *visible = d->visible;
+    vfi_seg_t *suf = d->suf, *back_suf = d->back_suf;
+    if (k_hi == k_lo)
+        return;
+    /* the running composites stay in registers: each step waits for the last, not for a store to it */
+    vfi_seg_t acc = iv[visible[k_hi - 1]], back_acc = acc;
+    suf[k_hi - 1] = back_suf[k_hi - 1] = acc;
+    for (uint32_t k = k_hi - 1; k-- > k_lo;) {
+        const vfi_seg_t *v = &iv[visible[k]];
+        acc = over(v, &acc);
+        back_acc = over(&back_acc, v);
+        suf[k] = acc;
+        back_suf[k] = back_acc;
     }
 }
 
-static inline void chain_up(const vfi_seg_t *iv, vfi_seg_t *pre, vfi_seg_t *back_pre, uint32_t m)
+/* The entries of the windows that start in the block s0 .. s0+r-1: window f .. f+r-1 is the block's suffix from
+ * f in front of the next block's prefix up to f+r-1, or the whole block when f = s0. The prefix grows by one
+ * interval a window, so it lives in registers, front to back (pre) and back to front (back_pre); entry
+ * (f, f+r) is the suffix in front of pre, entry (f+r, f) back_pre in front of the back suffix.
+ * A composite has opacity 0 exactly when all its intervals have, and is then zero in every channel; over()
+ * with a zero operand returns the other one exactly, so the joins below skip it without changing a bit. */
+static void join_block(const diagonal_t *d, uint32_t s0, uint32_t k_lo, uint32_t k_hi)
 {
-    if (iv[m].a == 0) {
-        pre[m] = pre[m - 1];
-        back_pre[m] = back_pre[m - 1];
-    } else {
-        pre[m] = over(&pre[m - 1], &iv[m]);
-        back_pre[m] = over(&iv[m], &back_pre[m - 1]);
-    }
-}
-
-/* In blocks of r intervals, for m in a block: suffix[m] = m .. end-1 front to back and back_suffix[m] = end-1 .. m
- * back to front; prefix[m] = start .. m and back_prefix[m] = m .. start. Windows start in a block (suffixes) and
- * end in the next (prefixes), so suffixes are needed only in blocks that start at or below the last window's
- * start, n - 1 - r, and prefixes only from the second block on: about half of each. A block's suffixes and the
- * next block's prefixes are four independent chains, run in one loop so that the processor overlaps them. */
-static void block_composites(const vfi_table_scratch_t *sc, uint32_t count, uint32_t r)
-{
-    const vfi_seg_t *iv = sc->interval;
-    vfi_seg_t *pre = sc->prefix, *suf = sc->suffix, *back_pre = sc->back_prefix, *back_suf = sc->back_suffix;
-    const uint32_t last_start = count - r; /* the last window starts here (n - 1 - r) */
-    for (uint32_t s0 = 0; s0 <= last_start; s0 += r) {
-        uint32_t s_len = s0 + r < count ? r : count - s0; /* suffixes of this block */
-        uint32_t p0 = s0 + r, p_len = p0 < count ? (p0 + r < count ? r : count - p0) : 0; /* prefixes of the next */
-        uint32_t top = s0 + s_len - 1;
-        suf[top] = back_suf[top] = iv[top];
-        if (p_len)
-            pre[p0] = back_pre[p0] = iv[p0];
-        uint32_t both = p_len < s_len ? p_len : s_len, k = 1;
-        for (; k < both; k++) {
-            uint32_t down = top - k, up = p0 + k;
-            chain_down(iv, suf, back_suf, down);
-            chain_up(iv, pre, back_pre, up);
+    const vfi_seg_t *iv = d->iv, *suf = d->suf, *back_suf = d->back_suf;
+    const uint16_t *visible = d->visible;
+    const uint32_t n = d->n, r = d->r, end = s0 + r - 1 < d->last_f ? s0 + r - 1 : d->last_f;
+    const vfi_table_out_t out = d->out;
+    size_t up = (size_t)s0 * n + s0 + r, down = (size_t)(s0 + r) * n + s0; /* entries (f, f+r) and (f+r, f) */
+    vfi_seg_t pre, back_pre, s, back_s;
+    pre.r = pre.g = pre.b = pre.a = 0; /* field by field: a zero aggregate can compile to a memset call */
+    back_pre = pre;
+    uint32_t k = k_lo; /* where the first visible interval at or above f is listed (k_hi: none) */
+    for (uint32_t f = s0;;) {
+        while (k < k_hi && visible[k] < f)
+            k++;
+        const vfi_seg_t *w = &s, *back_w = &back_s;
+        if (k == k_hi || suf[k].a == 0) {
+            w = &pre;
+            back_w = &back_pre;
+        } else if (pre.a == 0) {
+            w = &suf[k];
+            back_w = &back_suf[k];
+        } else {
+            s = over(&suf[k], &pre);
+            back_s = over(&back_pre, &back_suf[k]);
         }
-        for (uint32_t j = k; j < s_len; j++)
-            chain_down(iv, suf, back_suf, top - j);
-        for (uint32_t j = k; j < p_len; j++)
-            chain_up(iv, pre, back_pre, p0 + j);
+        store_pair(out, up, down, w, back_w);
+        /* The next window drops interval f and adds f + r. While both are empty its suffix composites to this
+         * one's and its prefix is this one: the same entries. */
+        for (; f < end && iv[f].a == 0 && iv[f + r].a == 0; f++) {
+            up += n + 1;
+            down += n + 1;
+            copy_pair(out, up, down, n + 1);
+        }
+        if (f == end)
+            break;
+        const vfi_seg_t *v = &iv[f + r];
+        if (v->a != 0) {
+            pre = over(&pre, v);
+            back_pre = over(v, &back_pre);
+        }
+        f++;
+        up += n + 1;
+        down += n + 1;
     }
+}
+
+/* d / r in Q.28 from d in Q16.16, rounded: (d 2^12 + r / 2) / r. Long division in 16-bit digits, so that each
+ * step is a 32-bit division (remainder < r < 2^16, so remainder 2^16 + digit < 2^32) where vfi_udiv64 took
+ * 64 shift-and-subtract steps; the quotient is the same. */
+static uint64_t piece_length_q28(uint32_t slab_q16, uint32_t r)
+{
+    uint64_t num = ((uint64_t)slab_q16 << 12) + r / 2, q = 0;
+    uint32_t rem = 0;
+    for (int shift = 48; shift >= 0; shift -= 16) {
+        uint32_t cur = (rem << 16) | (uint32_t)((num >> shift) & 0xFFFFu);
+        q = (q << 16) | (cur / r);
+        rem = cur % r;
+    }
+    return q;
 }
 
 /* 1 - exp(-x), x in Q.28; Q.30. */
@@ -205,17 +244,34 @@ static vfi_seg_t point_seg(const vfi_classify_t *cls, uint32_t i, uint32_t slab_
     return s;
 }
 
-/* Opacity and premultiplied colour of every interval for pieces of the given length (Q.28 in d_ref). */
-static void intervals_for_length(const vfi_classify_t *cls, uint64_t length_q28, vfi_seg_t *out)
+/* Mean extinction of interval m, (t0 + t1) / 2 in Q.24. */
+static inline uint64_t mean_q24(const vfi_classify_t *cls, uint32_t m)
 {
+    return ((uint64_t)cls->tau_q28[m] + cls->tau_q28[m + 1] + 16) >> 5;
+}
+
+/* An interval whose mean extinction rounds to 0 is zero at every length: set it once here, and list the others
+ * for intervals_for_length. Returns how many are listed. */
+static uint32_t list_visible(const vfi_classify_t *cls, vfi_seg_t *iv, uint16_t *visible)
+{
+    uint32_t count = 0;
     for (uint32_t m = 0; m + 1 < cls->n; m++) {
-        /* mean extinction (t0 + t1) / 2 in Q.24 times the length in Q.28: Q.52, back to Q.28 */
-        uint64_t mean_q24 = ((uint64_t)cls->tau_q28[m] + cls->tau_q28[m + 1] + 16) >> 5;
-        if (mean_q24 == 0) { /* invisible interval: no exp needed */
-            out[m].r = out[m].g = out[m].b = out[m].a = 0;
-            continue;
-        }
-        uint32_t a = opacity_q30((mean_q24 * length_q28 + (UINT64_C(1) << 23)) >> 24);
+        if (mean_q24(cls, m) != 0)
+            visible[count++] = (uint16_t)m;
+        else
+            iv[m].r = iv[m].g = iv[m].b = iv[m].a = 0;
+    }
+    return count;
+}
+
+/* Opacity and premultiplied colour of the listed intervals for pieces of the given length (Q.28 in d_ref). */
+static void intervals_for_length(const vfi_classify_t *cls, uint64_t length_q28, const uint16_t *visible,
+                                 uint32_t visible_count, vfi_seg_t *out)
+{
+    for (uint32_t k = 0; k < visible_count; k++) {
+        uint32_t m = visible[k];
+        /* the mean extinction in Q.24 times the length in Q.28: Q.52, back to Q.28 */
+        uint32_t a = opacity_q30((mean_q24(cls, m) * length_q28 + (UINT64_C(1) << 23)) >> 24);
         out[m].a = a;
         out[m].r = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 0] * a + HALF_Q30) >> 30);
         out[m].g = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 1] * a + HALF_Q30) >> 30);
@@ -244,26 +300,86 @@ static inline uint16_t q30_to_grid(uint32_t v, uint32_t bits)
     return (uint16_t)((q * VFI_ONE_Q15 + levels / 2) / levels);
 }
 
+static inline void store_q15(uint16_t *e, const vfi_seg_t *s)
+{
+    e[0] = q30_to_q15(s->r);
+    e[1] = q30_to_q15(s->g);
+    e[2] = q30_to_q15(s->b);
+    e[3] = q30_to_q15(s->a);
+}
+
+static inline void store_grid(uint16_t *e, const vfi_seg_t *s, uint32_t bits)
+{
+    e[0] = q30_to_grid(s->r, bits);
+    e[1] = q30_to_grid(s->g, bits);
+    e[2] = q30_to_grid(s->b, bits);
+    e[3] = q30_to_grid(s->a, bits);
+}
+
+static inline void store_u8(uint8_t *e, const vfi_seg_t *s)
+{
+    e[0] = q30_to_u8(s->r);
+    e[1] = q30_to_u8(s->g);
+    e[2] = q30_to_u8(s->b);
+    e[3] = q30_to_u8(s->a);
+}
+
 static inline void store(vfi_table_out_t out, size_t entry, const vfi_seg_t *s)
 {
+    if (out.q15 && out.grid_bits)
+        store_grid(out.q15 + entry * 4, s, out.grid_bits);
+    else if (out.q15)
+        store_q15(out.q15 + entry * 4, s);
+    else
+        store_u8(out.u8 + entry * 4, s);
+}
+
+/* Entries up and down, the format decided once for the two. join_block alone calls it, once, so that the
+ * compiler puts it and the stores in that loop rather than calling store() twice a window. */
+static inline void store_pair(vfi_table_out_t out, size_t up, size_t down, const vfi_seg_t *s, const vfi_seg_t *back_s)
+{
     if (out.q15 && out.grid_bits) {
-        uint16_t *e = out.q15 + entry * 4;
-        e[0] = q30_to_grid(s->r, out.grid_bits);
-        e[1] = q30_to_grid(s->g, out.grid_bits);
-        e[2] = q30_to_grid(s->b, out.grid_bits);
-        e[3] = q30_to_grid(s->a, out.grid_bits);
+        store_grid(out.q15 + up * 4, s, out.grid_bits);
+        store_grid(out.q15 + down * 4, back_s, out.grid_bits);
     } else if (out.q15) {
-        uint16_t *e = out.q15 + entry * 4;
-        e[0] = q30_to_q15(s->r);
-        e[1] = q30_to_q15(s->g);
-        e[2] = q30_to_q15(s->b);
-        e[3] = q30_to_q15(s->a);
+        store_q15(out.q15 + up * 4, s);
+        store_q15(out.q15 + down * 4, back_s);
     } else {
-        uint8_t *e = out.u8 + entry * 4;
-        e[0] = q30_to_u8(s->r);
-        e[1] = q30_to_u8(s->g);
-        e[2] = q30_to_u8(s->b);
-        e[3] = q30_to_u8(s->a);
+        store_u8(out.u8 + up * 4, s);
+        store_u8(out.u8 + down * 4, back_s);
+    }
+}
+
+/* Entries up and down from the entries distance before each: a window's entries equal to the previous one's.
+ * All four values are read before any is written, so that the compiler can move them as one word. */
+static inline void copy_pair(vfi_table_out_t out, size_t up, size_t down, size_t distance)
+{
+    if (out.q15) {
+        uint16_t *u = out.q15 + up * 4, *d = out.q15 + down * 4;
+        const uint16_t *from_u = u - distance * 4, *from_d = d - distance * 4;
+        uint16_t u0 = from_u[0], u1 = from_u[1], u2 = from_u[2], u3 = from_u[3];
+        uint16_t d0 = from_d[0], d1 = from_d[1], d2 = from_d[2], d3 = from_d[3];
+        u[0] = u0;
+        u[1] = u1;
+        u[2] = u2;
+        u[3] = u3;
+        d[0] = d0;
+        d[1] = d1;
+        d[2] = d2;
+        d[3] = d3;
+    } else {
+        uint8_t *u = out.u8 + up * 4, *d = out.u8 + down * 4;
+        const uint8_t *from_u = u - distance * 4, *from_d = d - distance * 4;
+        uint8_t u0 = from_u[0], u1 = from_u[1], u2 = from_u[2], u3 = from_u[3];
+        uint8_t d0 = from_d[0], d1 = from_d[1], d2 = from_d[2], d3 = from_d[3];
+        u[0] = u0;
+        u[1] = u1;
+        u[2] = u2;
+        u[3] = u3;
+        d[0] = d0;
+        d[1] = d1;
+        d[2] = d2;
+        d[3] = d3;
     }
 }
 

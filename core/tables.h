@@ -38,12 +38,14 @@ typedef struct vfi_seg {
     uint32_t r, g, b, a;
 } vfi_seg_t;
 
-/* Scratch the builders need besides their output, for n entries: interval values for one piece length, and the
- * incremental builder's block composites, front to back (prefix, suffix) and back to front (back_prefix,
- * back_suffix), and how many visible intervals lie below each interval. */
+/* Scratch the builders need besides their output, for n entries: interval values for one piece length, and for
+ * the incremental builder the list of the intervals that can be seen at all (visible) and one block's suffix
+ * composites, front to back (suffix) and back to front (back_suffix). prefix and back_prefix are not used any
+ * more (the builder keeps its prefixes in registers); they keep their bytes until the memory figures in
+ * README.md and docs/study are measured again. */
 typedef struct vfi_table_scratch {
     vfi_seg_t *interval, *prefix, *suffix, *back_prefix, *back_suffix; /* [n - 1] each */
-    uint16_t *visible_below;                                           /* [n] */
+    uint16_t *visible;                                                 /* [n] */
 } vfi_table_scratch_t;
 
 size_t vfi_table_scratch_bytes(uint32_t n);
