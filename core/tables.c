@@ -35,21 +35,16 @@ static inline void copy_pair(vfi_table_out_t out, size_t up, size_t down, size_t
 
 size_t vfi_table_scratch_bytes(uint32_t n)
 {
-    return 5 * vfi_arena_block(sizeof(vfi_seg_t) * (n - 1)) + vfi_arena_block(sizeof(uint16_t) * n);
+    return 3 * vfi_arena_block(sizeof(vfi_seg_t) * (n - 1)) + vfi_arena_block(sizeof(uint16_t) * n);
 }
 
 vf_status_t vfi_table_scratch_alloc(vfi_table_scratch_t *scratch, uint32_t n, vf_arena_t *arena)
 {
     scratch->interval = vfi_arena_alloc(arena, sizeof(vfi_seg_t) * (n - 1));
-    scratch->prefix = vfi_arena_alloc(arena, sizeof(vfi_seg_t) * (n - 1));
     scratch->suffix = vfi_arena_alloc(arena, sizeof(vfi_seg_t) * (n - 1));
-    scratch->back_prefix = vfi_arena_alloc(arena, sizeof(vfi_seg_t) * (n - 1));
     scratch->back_suffix = vfi_arena_alloc(arena, sizeof(vfi_seg_t) * (n - 1));
     scratch->visible = vfi_arena_alloc(arena, sizeof(uint16_t) * n);
-    return scratch->interval && scratch->prefix && scratch->suffix && scratch->back_prefix && scratch->back_suffix &&
-                   scratch->visible
-               ? VF_OK
-               : VF_ERR_NOMEM;
+    return scratch->interval && scratch->suffix && scratch->back_suffix && scratch->visible ? VF_OK : VF_ERR_NOMEM;
 }
 
 /* Front to back: x in front of y. */

@@ -40,12 +40,10 @@ typedef struct vfi_seg {
 
 /* Scratch the builders need besides their output, for n entries: interval values for one piece length, and for
  * the incremental builder the list of the intervals that can be seen at all (visible) and one block's suffix
- * composites, front to back (suffix) and back to front (back_suffix). prefix and back_prefix are not used any
- * more (the builder keeps its prefixes in registers); they keep their bytes until the memory figures in
- * README.md and docs/study are measured again. */
+ * composites, front to back (suffix) and back to front (back_suffix); its prefixes live in registers. */
 typedef struct vfi_table_scratch {
-    vfi_seg_t *interval, *prefix, *suffix, *back_prefix, *back_suffix; /* [n - 1] each */
-    uint16_t *visible;                                                 /* [n] */
+    vfi_seg_t *interval, *suffix, *back_suffix; /* [n - 1] each */
+    uint16_t *visible;                          /* [n] */
 } vfi_table_scratch_t;
 
 size_t vfi_table_scratch_bytes(uint32_t n);
@@ -58,8 +56,8 @@ void vfi_point_table(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out
  * compositing of intervals, so in rounding (at most 1 LSB of Q1.15 apart).
  * Brute force, O(N^3): every entry composites its |b - f| intervals one after another. The oracle.
  * Incremental subrange integration (Lum, Wilson and Ma 2004), O(N^2): along a diagonal |b - f| = r every
- * interval has length d / r; in blocks of r intervals, suffix and prefix composites are kept, and each entry
- * joins one suffix with one prefix. */
+ * interval has length d / r; in blocks of r intervals, each entry joins a suffix of one block (kept in scratch)
+ * with a prefix of the next (grown one interval an entry). */
 void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
                                  vfi_table_out_t out);
 void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
