@@ -32,9 +32,10 @@ button.0.action = next-preset
 button.1.action = next-mode
 BOARD
 
-# session EVENTS SPACING_MS: first a warm-up tour of every preset in every mode, each with the level and width
-# knobs at the far end of the main session's swing and a rest for a full-quality frame (about 95 frames, so
-# that frame 100 has met every size of renderer the session will need); then knob turns every SPACING_MS ms,
+# session EVENTS SPACING_MS: first a warm-up tour of every preset in every mode, each with a rest for a
+# full-quality frame at both ends of the level and width knobs' swing, which is where the main session rests
+# (about 80 frames, so that frame 100 has met every size of renderer the session will need: a state first met
+# later once grew the full-quality arena at frame 8093); then knob turns every SPACING_MS ms,
 # each knob eight detents one way and eight back, a preset press every 700 events, a mode press every 1900,
 # and a 400 ms rest every 1000 (full quality).
 session() {
@@ -42,10 +43,10 @@ session() {
         t = 50
         for (m = 0; m < 3; m++) {
             for (p = 0; p < 5; p++) {
-                printf "%d turn 3 8\n%d turn 4 8\n", t, t + 20
-                printf "%d turn 3 -8\n%d turn 4 -8\n", t + 420, t + 440
-                printf "%d press 0\n%d release 0\n", t + 460, t + 470
-                t += 490
+                printf "%d turn 3 8\n%d turn 4 8\n", t, t
+                printf "%d turn 3 -8\n%d turn 4 -8\n", t + 420, t + 420
+                printf "%d press 0\n%d release 0\n", t + 840, t + 850
+                t += 870
             }
             printf "%d press 1\n%d release 1\n", t, t + 10
             t += 30
