@@ -6,7 +6,7 @@ set -u
 for_what=${1:-run}
 
 # the core and volfix-sim; the viewer's backends (displays, knobs) come with their libraries when present
-need="gcc libc6-dev make pkg-config zlib1g-dev libpng-dev gnuplot-nox"
+need="gcc libc6-dev make pkg-config zlib1g-dev libpng-dev gnuplot-nox fonts-dejavu-core"
 need="$need libdrm-dev libusb-1.0-0-dev liblz4-dev libsdl2-dev libgpiod-dev"
 case "$for_what" in
   test) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf libc6-dev-arm64-cross libc6-dev-armhf-cross"
