@@ -439,8 +439,11 @@ static void run_config(const config_t *c, int index)
     /* A kernel driver on the interface, for the backend to detach: usbtest, loaded by the init script with
      * vendor=0x1d50 product=0x614d (Debian's kernel has no gud driver to bind). */
     int with_usbtest = c->vid == 0x1d50 && c->pid == 0x614d && usbtest_loaded();
-    if (with_usbtest && !wait_driver(usb, "usbtest", 5000, driver, sizeof driver))
-        printf("# usbtest did not bind to %s:1.0 (driver '%s'); the detach check is skipped\n", usb, driver);
+    if (with_usbtest) {
+        snprintf(name, sizeof name, "%s: usbtest binds to the interface (the driver open() must detach)", base);
+        int bound = wait_driver(usb, "usbtest", 5000, driver, sizeof driver);
+        hw_result(bound, name, "%s:1.0 has driver '%s' after 5 s", usb, driver);
+    }
     interface_driver(usb, driver, sizeof driver);
     int had_usbtest = strcmp(driver, "usbtest") == 0;
 
