@@ -101,8 +101,7 @@ int ref_composite(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mod
 /* The part of slab k (between slices k and k + 1) that the ray through pixel (u, v) spends inside the box, as
  * fractions phi of the slab: [*lo, *hi], empty when *lo > *hi. Along the slab the ray's slice position is
  * (x0 + phi dx, y0 + phi dy). Each bound is rounded to the 2^-16 grid (half up), which integer code can repeat
- * exactly (the ratio of two Q16.16 values); a sample
- * that is inside gives its end of the slab exactly. */
+ * exactly (the ratio of two Q16.16 values); a sample that is inside gives its end of the slab exactly. */
 static void slab_inside(const ref_factor_t *f, const double ou[2], const double ov[2], int u, int v, double *lo,
                         double *hi)
 {
