@@ -13,6 +13,8 @@ static const char usage_head[] =
     "  --hash               print the frame's FNV-1a 64-bit hash over its pixel bytes (port/image.h), to\n"
     "                       compare frames across machines; with or without -o\n"
     "  --reference          use the double-precision reference renderer\n"
+    "  --partial-slabs      with --reference: composite the part of a slab inside the box where a ray crosses\n"
+    "                       a side face between two slices (a proposal, not yet in the spec or the core)\n"
     "  --truth              use the ground-truth ray caster (trilinear, continuous transfer function, exact\n"
     "                       integration; --mode and the table options do not apply)\n";
 

@@ -204,6 +204,9 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
         } else if ((groups & SIM_OPT_REF) && strcmp(a, "--reference") == 0) {
             o->reference = 1;
             takes = 0;
+        } else if ((groups & SIM_OPT_REF) && strcmp(a, "--partial-slabs") == 0) {
+            o->partial_slabs = 1;
+            takes = 0;
         } else if ((groups & SIM_OPT_TRUTH) && strcmp(a, "--truth") == 0) {
             o->truth = 1;
             takes = 0;
@@ -249,6 +252,10 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
     }
     if (o->reference && o->truth) {
         fprintf(stderr, "volfix-sim: give --reference or --truth, not both\n");
+        return 2;
+    }
+    if (o->partial_slabs && !o->reference) {
+        fprintf(stderr, "volfix-sim: --partial-slabs is an option of the reference: give --reference too\n");
         return 2;
     }
     if (o->preset && o->tf_file) {

@@ -44,6 +44,7 @@ int sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen
     s->height = o->height;
     s->format = o->format;
     s->threads = o->threads;
+    s->partial_slabs = o->partial_slabs;
     return 0;
 }
 
@@ -159,6 +160,7 @@ int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, v
     params.lookup = s->params.lookup == VF_LOOKUP_BILINEAR ? REF_LOOKUP_BILINEAR : REF_LOOKUP_NEAREST;
     params.table_bits = (int)s->params.table_bits;
     params.correction = s->params.correction == VF_CORRECTION_LUT ? REF_CORRECTION_LUT : REF_CORRECTION_REBUILD;
+    params.partial_slabs = s->partial_slabs;
     int32_t *offsets = NULL;
     if (core_factor) {
         offsets = malloc(sizeof(int32_t) * 2 * core_factor->nk);

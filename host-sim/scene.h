@@ -23,6 +23,7 @@ typedef struct sim_scene {
     uint32_t width, height;
     vf_format_t format;
     int threads;
+    int partial_slabs;  /* the reference only: partial slabs at the side faces (ref.h, ref_params_t) */
 } sim_scene_t;
 
 /* Load the volume and transfer function the options name. Returns 0, or 2 with err. */

@@ -62,6 +62,12 @@ typedef struct ref_params {
     ref_lookup_t lookup;         /* nearest (default) or bilinear; ignored by preclass (voxels' nearest entries) */
     int table_bits;              /* 16 (default; 0 means 16) or 8: every table value rounded to a multiple of 1/255 */
     ref_correction_t correction; /* rebuild (default) or lut */
+    /* Not (yet) in docs/algorithm.md, for studies of the reference alone (issue 4): 0, section 4 as written (a slab
+     * whose front or back sample is outside the box's side faces is left out; every slice of order 0 stands for
+     * one slab); 1, partial slabs: a ray's part of a slab inside the box is composited from the side-face
+     * crossing on, with the entry corrected for its length, and order 0's slices stand for the ray's part in the
+     * box from halfway to the slice before to halfway to the slice after (ref_render.c says exactly how). */
+    int partial_slabs;
 } ref_params_t;
 
 typedef struct ref_view {
@@ -181,6 +187,10 @@ int ref_composite(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mod
  * given: build it for the slab length wanted (d, or d0 with a lut) and apply the table bits first. */
 int ref_composite_ex(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
                      const double *table, const ref_lut_t *lut, double *inter);
+
+/* The same with a choice of section 4's side-face rule (partial_slabs as in ref_params_t). */
+int ref_composite_sides(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
+                        const double *table, const ref_lut_t *lut, int partial_slabs, double *inter);
 
 /* Resample the intermediate image bilinearly (outside: transparent) onto the final image:
  * rgb[3 (py out_w + px) + c] = C + (1 - A) background[c]. */

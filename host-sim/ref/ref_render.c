@@ -98,8 +98,97 @@ int ref_composite(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mod
     return ref_composite_ex(vol, f, mode, REF_LOOKUP_NEAREST, N, table, NULL, inter);
 }
 
+/* The part of slab k (between slices k and k + 1) that the ray through pixel (u, v) spends inside the box, as
+ * fractions phi of the slab: [*lo, *hi], empty when *lo > *hi. Along the slab the ray's slice position is
+ * (x0 + phi dx, y0 + phi dy). Each bound is rounded to the 2^-16 grid (half up), which integer code can repeat
+ * exactly (the ratio of two Q16.16 values); a sample that is inside gives its end of the slab exactly. */
+static void slab_inside(const ref_factor_t *f, const double ou[2], const double ov[2], int u, int v, double *lo,
+                        double *hi)
+{
+    double a = 0, b = 1;
+    const double p0[2] = {u - ou[0], v - ov[0]}, dp[2] = {ou[0] - ou[1], ov[0] - ov[1]};
+    const int n[2] = {f->ni, f->nj};
+    for (int c = 0; c < 2; c++) {
+        if (dp[c] == 0) {
+            if (p0[c] < 0 || p0[c] > n[c] - 1)
+                a = 1, b = 0;
+            continue;
+        }
+        double t0 = floor(-p0[c] / dp[c] * 65536 + 0.5) / 65536;
+        double t1 = floor((n[c] - 1 - p0[c]) / dp[c] * 65536 + 0.5) / 65536;
+        a = fmax(a, fmin(t0, t1));
+        b = fmin(b, fmax(t0, t1));
+    }
+    *lo = a;
+    *hi = b;
+}
+
+/* The scalar where the ray through (u, v) crosses the box's side at fraction phi of slab k: the trilinear value
+ * at slice position (X, Y) = (x0 + phi dx, y0 + phi dy), each rounded to the 2^-16 grid and clamped to the
+ * slice, between the two slices: (1 - phi) S_k(X, Y) + phi S_k+1(X, Y), rounded to the 2^-32 grid. */
+static double face_scalar(const ref_factor_t *f, const uint8_t *front, const uint8_t *back, const double ou[2],
+                          const double ov[2], int u, int v, double phi)
+{
+    double x = (u - ou[0]) + phi * (ou[0] - ou[1]), y = (v - ov[0]) + phi * (ov[0] - ov[1]);
+    x = fmin(fmax(floor(x * 65536 + 0.5) / 65536, 0), f->ni - 1);
+    y = fmin(fmax(floor(y * 65536 + 0.5) / 65536, 0), f->nj - 1);
+    double s = (1 - phi) * sample(front, f->ni, x, y) + phi * sample(back, f->ni, x, y);
+    return floor(s * 4294967296.0 + 0.5) / 4294967296.0;
+}
+
+/* A segment of rho slabs' length from an entry made for one slab: a' = 1 - (1 - a)^rho (exact: the optical depth
+ * scales with length), C' = C a' / a (exact where extinction and colour are constant), C' = C rho for a = 0. */
+static void shorten(double seg[4], double rho)
+{
+    if (rho == 1)
+        return;
+    double a = fmin(seg[0], 1.0), a2 = 1 - pow(1 - a, rho), g = a > 0 ? a2 / a : rho;
+    seg[0] = a2;
+    for (int c = 1; c < 4; c++)
+        seg[c] *= g;
+}
+
+static int inside(const ref_factor_t *f, double x, double y)
+{
+    return x >= 0 && x <= f->ni - 1 && y >= 0 && y <= f->nj - 1;
+}
+
+/* Order 0 (point, preclass): slice k's sample at (u, v), inside, stands for the part of the ray from halfway to
+ * the slice before to halfway to the slice after that lies in the box, plus the rest of a neighbouring slab whose
+ * other sample is outside (a ray that enters or leaves through a side face); the front and back slices have no
+ * slab beyond them. In slabs: rho = (slab k - 1: 1/2 if slice k - 1's sample is inside, else the part of that
+ * slab inside the box) + (slab k: likewise with slice k + 1). */
+static double order0_length(const ref_factor_t *f, int k, int u, int v, const double ou3[3], const double ov3[3])
+{
+    double rho = 0, lo, hi;
+    if (k > 0) {
+        slab_inside(f, ou3, ov3, u, v, &lo, &hi);
+        rho += inside(f, u - ou3[0], v - ov3[0]) ? 0.5 : hi >= lo ? hi - lo : 0;
+    }
+    if (k < f->nk - 1) {
+        slab_inside(f, ou3 + 1, ov3 + 1, u, v, &lo, &hi);
+        rho += inside(f, u - ou3[2], v - ov3[2]) ? 0.5 : hi >= lo ? hi - lo : 0;
+    }
+    return rho;
+}
+
+static void union_range(double ou0, double ou1, int n, int size, int *lo, int *hi)
+{
+    int a0, b0, a1, b1;
+    covered(ou0, n, size, &a0, &b0);
+    covered(ou1, n, size, &a1, &b1);
+    *lo = a0 < a1 ? a0 : a1;
+    *hi = b0 > b1 ? b0 : b1;
+}
+
 int ref_composite_ex(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
                      const double *table, const ref_lut_t *lut, double *inter)
+{
+    return ref_composite_sides(vol, f, mode, lookup, N, table, lut, 0, inter);
+}
+
+int ref_composite_sides(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
+                        const double *table, const ref_lut_t *lut, int partial_slabs, double *inter)
 {
     if (!vol || !vol->scalars || !f || !table || !inter || N < REF_MIN_TABLE || N > REF_MAX_TABLE ||
         !mode_valid(mode) || !lookup_valid(lookup))
@@ -115,40 +204,75 @@ int ref_composite_ex(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t 
     for (size_t n = 0; n < 4 * (size_t)f->int_w * (size_t)f->int_h; n++)
         inter[n] = 0;
 
-    /* point, preclass: segment k is slice k. preint1: segment k is the slab between slices k and k + 1. */
-    int segments = mode == REF_MODE_PREINT1 ? f->nk - 1 : f->nk;
-    for (int k = 0; k < segments; k++) {
-        int last = mode == REF_MODE_PREINT1 ? k + 1 : k; /* the pixels must be inside slices k..last */
-        int u_lo = 0, u_hi = f->int_w - 1, v_lo = 0, v_hi = f->int_h - 1;
-        double ou[2], ov[2];
-        for (int q = 0; q <= last - k; q++) {
-            int a, b;
-            ref_factor_offset(f, k + q, &ou[q], &ov[q]);
-            covered(ou[q], f->ni, f->int_w, &a, &b);
-            u_lo = a > u_lo ? a : u_lo;
-            u_hi = b < u_hi ? b : u_hi;
-            covered(ov[q], f->nj, f->int_h, &a, &b);
-            v_lo = a > v_lo ? a : v_lo;
-            v_hi = b < v_hi ? b : v_hi;
+    if (mode != REF_MODE_PREINT1) {
+        /* point, preclass: segment k is slice k, for the pixels whose sample is inside (with partial slabs, for the
+         * length order0_length; else for one slab) */
+        for (int k = 0; k < f->nk; k++) {
+            double ou3[3] = {0, 0, 0}, ov3[3] = {0, 0, 0}; /* slices k - 1, k, k + 1 where they exist */
+            for (int q = -1; q <= 1; q++)
+                if (k + q >= 0 && k + q < f->nk)
+                    ref_factor_offset(f, k + q, &ou3[q + 1], &ov3[q + 1]);
+            int u_lo, u_hi, v_lo, v_hi;
+            covered(ou3[1], f->ni, f->int_w, &u_lo, &u_hi);
+            covered(ov3[1], f->nj, f->int_h, &v_lo, &v_hi);
+            const uint8_t *slice = std + (size_t)k * slice_size;
+            if (cls)
+                classify_slice(slice, slice_size, N, table, cls);
+            for (int v = v_lo; v <= v_hi; v++) {
+                for (int u = u_lo; u <= u_hi; u++) {
+                    double *pix = inter + 4 * ((size_t)v * (size_t)f->int_w + (size_t)u), seg[4];
+                    if (pix[3] >= REF_ERT_THRESHOLD)
+                        continue; /* early ray termination: no further segments */
+                    double rho = partial_slabs ? order0_length(f, k, u, v, ou3, ov3) : 1;
+                    if (!(rho > 0))
+                        continue;
+                    if (cls)
+                        sample_entries(cls, f->ni, u - ou3[1], v - ov3[1], seg);
+                    else
+                        ref_lookup_point(table, N, lookup, sample(slice, f->ni, u - ou3[1], v - ov3[1]), seg);
+                    if (lut)
+                        ref_lut_correct(lut, seg); /* after the lookup (and the table bits, applied to the table) */
+                    shorten(seg, rho);
+                    composite(pix, seg);
+                }
+            }
         }
-        const uint8_t *front = std + (size_t)k * slice_size, *back = front + slice_size;
-        if (cls)
-            classify_slice(front, slice_size, N, table, cls);
-        for (int v = v_lo; v <= v_hi; v++) {
-            for (int u = u_lo; u <= u_hi; u++) {
-                double *pix = inter + 4 * ((size_t)v * (size_t)f->int_w + (size_t)u), seg[4];
-                if (pix[3] >= REF_ERT_THRESHOLD)
-                    continue; /* early ray termination: no further segments */
-                if (mode == REF_MODE_PRECLASS)
-                    sample_entries(cls, f->ni, u - ou[0], v - ov[0], seg);
-                else if (mode == REF_MODE_POINT)
-                    ref_lookup_point(table, N, lookup, sample(front, f->ni, u - ou[0], v - ov[0]), seg);
-                else
-                    ref_lookup_preint(table, N, lookup, sample(front, f->ni, u - ou[0], v - ov[0]),
-                                      sample(back, f->ni, u - ou[1], v - ov[1]), seg);
-                if (lut)
-                    ref_lut_correct(lut, seg); /* after the lookup (and the table bits, applied to the table) */
-                composite(pix, seg);
+    } else {
+        /* preint1: segment k is the slab between slices k and k + 1 when both samples are inside; with partial
+         * slabs also the part of it inside the box when one or neither is, from or to the side-face crossing */
+        for (int k = 0; k + 1 < f->nk; k++) {
+            double ou[2], ov[2];
+            ref_factor_offset(f, k, &ou[0], &ov[0]);
+            ref_factor_offset(f, k + 1, &ou[1], &ov[1]);
+            int u_lo, u_hi, v_lo, v_hi;
+            union_range(ou[0], ou[1], f->ni, f->int_w, &u_lo, &u_hi);
+            union_range(ov[0], ov[1], f->nj, f->int_h, &v_lo, &v_hi);
+            const uint8_t *front = std + (size_t)k * slice_size, *back = front + slice_size;
+            for (int v = v_lo; v <= v_hi; v++) {
+                for (int u = u_lo; u <= u_hi; u++) {
+                    double *pix = inter + 4 * ((size_t)v * (size_t)f->int_w + (size_t)u), seg[4], lo = 0, hi = 1;
+                    if (pix[3] >= REF_ERT_THRESHOLD)
+                        continue; /* early ray termination: no further segments */
+                    int in_f = inside(f, u - ou[0], v - ov[0]), in_b = inside(f, u - ou[1], v - ov[1]);
+                    double rho = 1;
+                    if (!in_f || !in_b) {
+                        if (!partial_slabs)
+                            continue; /* section 4: both samples inside, or nothing */
+                        slab_inside(f, ou, ov, u, v, &lo, &hi);
+                        if (!(hi > lo))
+                            continue;
+                        rho = hi - lo;
+                    }
+                    double sf = in_f ? sample(front, f->ni, u - ou[0], v - ov[0])
+                                     : face_scalar(f, front, back, ou, ov, u, v, lo);
+                    double sb = in_b ? sample(back, f->ni, u - ou[1], v - ov[1])
+                                     : face_scalar(f, front, back, ou, ov, u, v, hi);
+                    ref_lookup_preint(table, N, lookup, sf, sb, seg);
+                    if (lut)
+                        ref_lut_correct(lut, seg);
+                    shorten(seg, rho);
+                    composite(pix, seg);
+                }
             }
         }
     }
@@ -210,7 +334,7 @@ int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, c
         if (rc == 0 && lut)
             rc = ref_lut_init(lut, f.slab / REF_LUT_D0);
         if (rc == 0)
-            rc = ref_composite_ex(vol, &f, p->mode, p->lookup, p->table_size, table, lut, inter);
+            rc = ref_composite_sides(vol, &f, p->mode, p->lookup, p->table_size, table, lut, p->partial_slabs, inter);
         if (rc == 0)
             ref_warp(&f, inter, p->background, rgb);
     }

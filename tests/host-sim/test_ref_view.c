@@ -6,6 +6,7 @@
  */
 #include "check.h"
 #include "ref/ref.h"
+#include "truth/truth.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -285,7 +286,7 @@ static void composite_head_on_closed_form(void)
     /* scale 1 (zoom sqrt 3 / 4 on 4 x 4): final pixels 1..2 are intermediate pixels 0..1, 0 and 3 outside */
     ref_view_t view = {0, 0, 0, sqrt(3.0) / 4};
     ref_params_t p = {REF_MODE_POINT, 256, {0.1, 0.2, 0.3}, NULL, 0, 0,
-                      REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD};
+                      REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0};
     double rgb[4 * 4 * 3], col[3] = {0.2, 0.5, 0.9};
     for (int m = 0; m < 2; m++) {
         p.mode = m ? REF_MODE_PREINT1 : REF_MODE_POINT;
@@ -448,6 +449,71 @@ static void composite_constant_tf_counts(void)
     free(s);
 }
 
+/* Partial slabs (ref_params_t.partial_slabs): in a uniform volume with a constant TF a ray's opacity is
+ * 1 - (1 - a0)^L, L its length inside the box, which the ground truth integrates. With partial slabs every
+ * intermediate pixel's ray must match it (preint1: all of it; point: all but the rays that cross a corner of the
+ * box within one slab, which order 0 has no sample for); with section 4's rule the rays that enter or leave
+ * through a side face lose up to a slab. */
+static void composite_partial_slabs_match_truth(void)
+{
+    int dims[3] = {9, 7, 5};
+    uint8_t *s = volume_of(dims, const_200);
+    ref_volume_t vol = {{9, 7, 5}, {1, 1.5, 1}, s};
+    const ref_tf_point_t tf = {0, 0.3, 0.6, 0.9, 0.05};
+    const ref_view_t views[] = {{3000, 2000, 500, 1}, {20000, -7000, 0, 1}, {9000, 12000, 0, 1}, {0, 0, 0, 1}};
+    for (int n = 0; n < 4; n++) {
+        for (int m = 0; m < 2; m++) {
+            ref_mode_t mode = m ? REF_MODE_PREINT1 : REF_MODE_POINT;
+            ref_factor_t f;
+            double *inter[2] = {NULL, NULL}, *table = NULL;
+            CHECK_EQ(composite_with(&vol, &views[n], &tf, 1, mode, 256, &f, &inter[0], &table), 0);
+            inter[1] = malloc(sizeof(double) * 4 * (size_t)f.int_w * (size_t)f.int_h);
+            CHECK(inter[1] != NULL);
+            CHECK_EQ(ref_composite_sides(&vol, &f, mode, REF_LOOKUP_NEAREST, 256, table, NULL, 1, inter[1]), 0);
+            double worst[2] = {0, 0}, det = f.du_dx * f.dv_dy - f.du_dy * f.dv_dx;
+            int off = 0, seen = 0;
+            for (int v = 0; v < f.int_h; v++) {
+                for (int u = 0; u < f.int_w; u++) {
+                    double ou, ov;
+                    ref_factor_offset(&f, 0, &ou, &ov);
+                    if ((f.si == 0 && (u - ou == 0 || u - ou == f.ni - 1)) ||
+                        (f.sj == 0 && (v - ov == 0 || v - ov == f.nj - 1)))
+                        continue; /* a ray along a side face: in or out is down to rounding */
+                    /* the final-image point whose ray runs through intermediate pixel (u, v) */
+                    double a = u - f.u0, b = v - f.v0, rgba[4];
+                    double px = (a * f.dv_dy - b * f.du_dy) / det, py = (f.du_dx * b - f.dv_dx * a) / det;
+                    CHECK_EQ(truth_ray(&vol, &tf, 1, &views[n], 16, 16, px, py, rgba), 0);
+                    seen += rgba[3] > 0;
+                    for (int q = 0; q < 2; q++) {
+                        const double *pix = inter[q] + 4 * (v * f.int_w + u);
+                        double e = fabs(pix[3] - rgba[3]);
+                        worst[q] = fmax(worst[q], e);
+                        if (q == 1) {
+                            off += e > 1e-4;
+                            CHECK_NEAR(pix[0], 0.3 * pix[3], 1e-12); /* a constant colour, whatever the length */
+                        }
+                    }
+                }
+            }
+            double one_slab = 1 - pow(0.95, f.slab);
+            CHECK(seen > 9 * 7 / 2);
+            if (n < 3 || !m) /* head on (view 3) no ray crosses a side face; point's slices still add a slab */
+                CHECK_MSG(worst[0] > 0.3 * one_slab, "view %d mode %d: section 4's rule off %.3g only", n, m,
+                          worst[0]);
+            if (m) {
+                CHECK_MSG(worst[1] < 1e-4, "view %d: preint1 with partial slabs %.3g from the truth", n, worst[1]);
+            } else {
+                CHECK_MSG(worst[1] < one_slab, "view %d: point with partial slabs %.3g from the truth", n, worst[1]);
+                CHECK_MSG(off * 10 <= seen, "view %d: point: %d of %d rays off", n, off, seen);
+            }
+            free(inter[0]);
+            free(inter[1]);
+            free(table);
+        }
+    }
+    free(s);
+}
+
 /* ---- the whole frame ------------------------------------------------------------------------------------- */
 
 static int sphere(int x, int y, int z)
@@ -475,7 +541,7 @@ static void render_symmetric_sphere_axis_views(void)
     static double ref_img[31 * 31 * 3], img[31 * 31 * 3];
     for (int m = 0; m < 2; m++) {
         ref_params_t p = {m ? REF_MODE_PREINT1 : REF_MODE_POINT, 256, {0, 0, 0}, NULL, 0, 0,
-                          REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD};
+                          REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0};
         CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &views[0], 31, 31, ref_img, NULL), 0);
         for (int n = 1; n < 7; n++) {
             ref_factor_t f;
@@ -501,7 +567,7 @@ static void render_roll_turns_image(void)
     static double a[W * W * 3], b[W * W * 3];
     for (int m = 0; m < 2; m++) {
         ref_params_t p = {m ? REF_MODE_PREINT1 : REF_MODE_POINT, 128, {0.25, 0.5, 0.75}, NULL, 0, 0,
-                          REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD};
+                          REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0};
         ref_view_t v0 = {1234, 567, 0, 1.3}, v1 = {1234, 567, 16384, 1.3};
         ref_factor_t f0, f1;
         CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &v0, W, W, a, &f0), 0);
@@ -524,7 +590,7 @@ static void render_random_views_in_range(void)
     int background_pixels = 0, volume_pixels = 0;
     for (int n = 0; n < 40; n++) {
         ref_params_t p = {n & 1 ? REF_MODE_PREINT1 : REF_MODE_POINT, 2 + (int)(rnd() * 300), {0.2, 0.4, 0.6},
-                          NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD};
+                          NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0};
         ref_view_t v = {(int32_t)(rnd() * 65536), (int32_t)(rnd() * 65536), (int32_t)(rnd() * 65536),
                         0.5 + rnd()};
         CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &v, 40, 30, img, NULL), 0);
@@ -540,7 +606,7 @@ static void render_random_views_in_range(void)
     }
     CHECK(background_pixels > 0 && volume_pixels > 0);
     /* bad arguments */
-    ref_params_t p = {REF_MODE_POINT, 1, {0, 0, 0}, NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD};
+    ref_params_t p = {REF_MODE_POINT, 1, {0, 0, 0}, NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0};
     ref_view_t v = {0, 0, 0, 1};
     CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &v, 40, 30, img, NULL), -1);
     p.table_size = 1025;
@@ -565,6 +631,7 @@ CHECK_CASES({"factor_projects_corners", factor_projects_corners},
             {"composite_oblique_by_hand", composite_oblique_by_hand},
             {"composite_early_termination", composite_early_termination},
             {"composite_constant_tf_counts", composite_constant_tf_counts},
+            {"composite_partial_slabs_match_truth", composite_partial_slabs_match_truth},
             {"render_symmetric_sphere_axis_views", render_symmetric_sphere_axis_views},
             {"render_roll_turns_image", render_roll_turns_image},
             {"render_random_views_in_range", render_random_views_in_range});
