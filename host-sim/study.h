@@ -52,6 +52,19 @@ typedef struct study_reference {
 
 #define STUDY_MAX_REFERENCES 256
 
+/* Where one scene's distance from the truth comes from (study_floor.c): the floor, exact ray integrals at the
+ * intermediate pixels warped, against the truth; per mode (point, preint1, preclass, as ref_mode_t) and side-face
+ * rule ([0] section 4's whole slabs, [1] partial slabs) the double reference's intermediate image against those
+ * exact integrals (the integration alone) and its final image against the truth. PSNR in dB. */
+#define STUDY_FLOOR_MODES 3
+typedef struct study_floor {
+    int done, scene;
+    int int_w, int_h;
+    double exact_db;
+    double integration_db[STUDY_FLOOR_MODES][2];
+    double truth_db[STUDY_FLOOR_MODES][2];
+} study_floor_t;
+
 typedef struct study {
     study_scene_t scenes[STUDY_MAX_SCENES];
     int scene_count;
@@ -64,6 +77,7 @@ typedef struct study {
     const char *dir;
     double started_ms;
     int progress_tty;      /* rewrite one progress line (a terminal) or print one per run (a log) */
+    study_floor_t floor;   /* of the whole-view Marschner-Lobb scene, for the report's first claim */
 } study_t;
 
 /* Add a scene; returns its index, or -1 with err. The volume is loaded at once. */
@@ -83,6 +97,9 @@ int study_render_core(study_t *st, int scene, const vf_params_t *params, uint8_t
 
 /* The scene's truth image (rendered on first use). NULL with err on failure. */
 const uint8_t *study_truth(study_t *st, int scene, char *err, size_t errlen);
+
+/* Measure a scene's floor and its integration errors (study_floor_t) into out. Returns 0, or 2 with err. */
+int study_floor(study_t *st, int scene, study_floor_t *out, char *err, size_t errlen);
 
 void study_free(study_t *st);
 

@@ -553,16 +553,22 @@ int study_write_report(study_t *st, char *err, size_t errlen)
                 return 2;
 
     claims_t c = make_claims(st);
+    const study_floor_t *fl = &st->floor;
     FILE *j = open_in(st, "summary.json", err, errlen);
     if (!j)
         return 2;
     fprintf(j, "{\"quick\": %d, \"runs\": %d, \"scenes\": %d, \"seconds\": %.1f, \"ml41_sharp_preint1_truth_psnr_db\": %.3f, "
                "\"ml41_sharp_point_truth_psnr_db\": %.3f, \"preint1_gain_db\": %.3f, \"interior_preint1_truth_psnr_db\": %.3f, "
                "\"interior_point_truth_psnr_db\": %.3f, \"interior_preint1_gain_db\": %.3f, \"default_fixed_point_max_abs\": %d, "
-               "\"default_fixed_point_min_psnr_db\": %.3f, \"default_fixed_point_cases\": %d, \"cube_truth_psnr_db\": %.3f}\n",
+               "\"default_fixed_point_min_psnr_db\": %.3f, \"default_fixed_point_cases\": %d, \"cube_truth_psnr_db\": %.3f, "
+               "\"ml41_sharp_floor_db\": %.3f, \"integration_point_db\": [%.3f, %.3f], \"integration_preint1_db\": [%.3f, %.3f], "
+               "\"reference_point_truth_db\": [%.3f, %.3f], \"reference_preint1_truth_db\": [%.3f, %.3f]}\n",
             st->quick, st->run_count, st->scene_count, (vfp_now_ms() - st->started_ms) / 1000, c.preint1_truth_db,
             c.point_truth_db, c.gain_db, c.inside_preint1_db, c.inside_point_db, c.inside_gain_db, c.fixed_max,
-            c.fixed_min_psnr, c.fixed_cases, c.cube_db);
+            c.fixed_min_psnr, c.fixed_cases, c.cube_db, fl->exact_db, fl->integration_db[REF_MODE_POINT][0],
+            fl->integration_db[REF_MODE_POINT][1], fl->integration_db[REF_MODE_PREINT1][0],
+            fl->integration_db[REF_MODE_PREINT1][1], fl->truth_db[REF_MODE_POINT][0], fl->truth_db[REF_MODE_POINT][1],
+            fl->truth_db[REF_MODE_PREINT1][0], fl->truth_db[REF_MODE_PREINT1][1]);
     fclose(j);
 
     FILE *f = open_in(st, "report.md", err, errlen);
@@ -588,21 +594,36 @@ int study_write_report(study_t *st, char *err, size_t errlen)
                "the same slab spacing: `preint1` is %.2f dB from the truth, `point` %.2f dB: **%.2f dB closer** "
                "(claim: at least 6 dB; %s). Zoomed to the volume's interior (zoom 3, 256x256), where the rays' "
                "integration is all that differs: `preint1` %.2f dB, `point` %.2f dB, **%.2f dB closer** (%s).\n\n"
-               "   Why the whole view gains less: shear-warp casts one ray per voxel column (the intermediate image) and "
-               "resamples it in the warp, and Marschner-Lobb with `sharp` has detail finer than a voxel, so even the "
-               "exact integrals along those rays, warped the same way, stay far from the truth (about 22 dB on this "
-               "view, `tools/resolution_floor.c`): that floor is the same for both orders and caps what any slab "
-               "integration can gain here. On the intermediate image, against the exact integrals of the same rays, "
-               "`preint1` is about 4 dB closer than `point`. The side faces' staircase (shear-warp adds a slab or "
-               "nothing where a ray crosses a side face: the uniform cube `cube24` renders %.1f dB from the truth "
-               "for this reason alone) is the smaller part: partial slabs, tried in the reference (`volfix-sim render "
-               "--reference --partial-slabs`), bring the cube to the warp's floor (47.5 dB) but `preint1` on this "
-               "view only from 19.9 to 20.6 dB. The peak-width plot below shows the rest: with peaks narrower than "
-               "`sharp` the 256-entry table limits both orders, with wider ones point sampling no longer misses them."
-               "\n\n   ![peak width](peaks.png)\n\n",
+               "   Why the whole view gains less: shear-warp casts one ray per voxel column (the %dx%d intermediate "
+               "image) and resamples it in the warp, and Marschner-Lobb with `sharp` has detail finer than a voxel. The "
+               "truth's own exact integrals along those same rays, warped the same way, are **%.2f dB** from the truth: "
+               "a floor, the same for both orders, that no slab integration passes on this view. The table below splits "
+               "the double reference's distance (the core is within a level of it): against the exact integrals of "
+               "its own rays, the integration alone, `preint1` is %.2f dB closer than `point` with whole slabs at the "
+               "side faces and %.2f dB with partial slabs (the part of a slab inside the box where a ray crosses a "
+               "side face); against the truth, after the warp, %.2f and %.2f dB. The side faces are the smaller part "
+               "here; on the uniform cube `cube24`, where nothing else differs, the core renders %.1f dB from the "
+               "truth. The peak-width plot below shows the rest: with peaks narrower than `sharp` the 256-entry "
+               "table limits both orders, with wider ones point sampling no longer misses them.\n\n"
+               "   | double reference, PSNR in dB | point | preint1 | preclass |\n   |---|---|---|---|\n"
+               "   | intermediate image against the exact integrals, whole slabs | %.2f | %.2f | %.2f |\n"
+               "   | intermediate image against the exact integrals, partial slabs | %.2f | %.2f | %.2f |\n"
+               "   | final image against the truth, whole slabs | %.2f | %.2f | %.2f |\n"
+               "   | final image against the truth, partial slabs | %.2f | %.2f | %.2f |\n"
+               "   | floor: the exact integrals, warped, against the truth | %.2f | %.2f | %.2f |\n\n"
+               "   ![peak width](peaks.png)\n\n",
             c.preint1_truth_db, c.point_truth_db, c.gain_db, c.gain_db >= 6 ? "holds" : "does NOT hold",
             c.inside_preint1_db, c.inside_point_db, c.inside_gain_db, c.inside_gain_db >= 6 ? "at least 6 dB" : "less than 6 dB",
-            c.cube_db);
+            fl->int_w, fl->int_h, fl->exact_db,
+            fl->integration_db[REF_MODE_PREINT1][0] - fl->integration_db[REF_MODE_POINT][0],
+            fl->integration_db[REF_MODE_PREINT1][1] - fl->integration_db[REF_MODE_POINT][1],
+            fl->truth_db[REF_MODE_PREINT1][0] - fl->truth_db[REF_MODE_POINT][0],
+            fl->truth_db[REF_MODE_PREINT1][1] - fl->truth_db[REF_MODE_POINT][1], c.cube_db,
+            fl->integration_db[0][0], fl->integration_db[1][0], fl->integration_db[2][0],
+            fl->integration_db[0][1], fl->integration_db[1][1], fl->integration_db[2][1],
+            fl->truth_db[0][0], fl->truth_db[1][0], fl->truth_db[2][0],
+            fl->truth_db[0][1], fl->truth_db[1][1], fl->truth_db[2][1],
+            fl->exact_db, fl->exact_db, fl->exact_db);
     if (strip_count)
         fprintf(f, "   ![orders side by side](%s)\n\n   Top, left to right: %s, %s, %s, the truth; bottom: each "
                    "order's difference from the truth, times 4.\n\n",

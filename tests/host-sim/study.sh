@@ -50,6 +50,23 @@ awk "BEGIN { exit !($gain >= 6) }" && ok "preint1 $gain dB closer to the truth t
 [ -n "$fixed" ] && [ "$cases" -ge 10 ] && [ "$fixed" -le 1 ] &&
     ok "default configuration within $fixed level of the reference over $cases renders" ||
     fail "default fixed-point error at most 1" "max $fixed over $cases renders"
+# where the whole view's distance comes from: the exact integrals at shear-warp's own rays, warped, are closer to
+# the truth than any mode's reference (else the floor's rays or warp do not line up with the renderer's), and on
+# those rays pre-integration integrates better than point sampling
+arr() { sed -n "s/.*\"$1\": \[\([-0-9.]*\), \([-0-9.]*\)\].*/\1 \2/p" "$dir/summary.json"; }
+floor=$(num ml41_sharp_floor_db)
+set -- $(arr reference_point_truth_db) $(arr reference_preint1_truth_db) $(arr integration_point_db) \
+    $(arr integration_preint1_db)
+if [ $# -eq 8 ] && awk "BEGIN { exit !($floor > $1 && $floor > $2 && $floor > $3 && $floor > $4) }"; then
+    ok "the one-ray-per-voxel floor ($floor dB) is above every reference render ($1 $2 $3 $4 dB)"
+else
+    fail "floor" "floor '$floor' dB, references '$*'"
+fi
+if [ $# -eq 8 ] && awk "BEGIN { exit !($7 > $5 + 2 && $8 > $6 + 2) }"; then
+    ok "on shear-warp's own rays preint1 integrates closer than point ($7 vs $5, $8 vs $6 dB)"
+else
+    fail "integration alone" "point '$5 $6', preint1 '$7 $8'"
+fi
 # the whole view's claim is reported as it is, with the word the report uses for it
 verdict=$(awk "BEGIN { print ($whole >= 6) ? \"holds\" : \"does NOT hold\" }")
 said=$(sed -n 's/.*\*\*\([-0-9.]*\) dB closer\*\* (claim: at least 6 dB; \([^)]*\)).*/\1 \2/p' "$dir/report.md" | head -n 1)
