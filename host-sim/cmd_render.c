@@ -14,7 +14,7 @@ static const char usage_head[] =
     "                       compare frames across machines; with or without -o\n"
     "  --reference          use the double-precision reference renderer\n"
     "  --partial-slabs      with --reference: composite the part of a slab inside the box where a ray crosses\n"
-    "                       a side face between two slices (a proposal, not yet in the spec or the core)\n"
+    "                       a side face between two slices (docs/algorithm.md section 4c; not in the core yet)\n"
     "  --truth              use the ground-truth ray caster (trilinear, continuous transfer function, exact\n"
     "                       integration; --mode, --rays and the table options do not apply)\n";
 
