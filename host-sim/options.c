@@ -25,6 +25,9 @@ const char sim_scene_help[] =
     "  --correction C       rebuild (default: tables for each view's slab length) or lut (tables built once,\n"
     "                       opacity and colour corrected through a lookup on opacity)\n"
     "  --buffer B           slice (default: two slice-sized buffers) or image (one image-row buffer)\n"
+    "  --rays N             rays per voxel column along each axis: 1 (default), 2, 4, 8 or 16 (an intermediate\n"
+    "                       image of N x N pixels per voxel); above 1 only the reference has it (render\n"
+    "                       --reference); the truth ignores it\n"
     "  --threads N          compositing and warping threads (default 1)\n"
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]\n"
     "                       for raw voxel files (--spacing also overrides a file's own)\n"
@@ -78,6 +81,7 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
     o->threads = 1;
     o->frames = 90;
     o->tf_scale = 1;
+    o->rays = 1;
     char err[VFP_ERR_LEN];
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -137,6 +141,11 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
                 o->params.buffer = VF_BUFFER_IMAGE;
             else
                 return bad(a, v, "slice or image");
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--rays") == 0) {
+            double n;
+            if (!v || parse_doubles(v, &n, 1, 1) < 0 || !(n == 1 || n == 2 || n == 4 || n == 8 || n == 16))
+                return bad(a, v, "1, 2, 4, 8 or 16");
+            o->rays = (int)n;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--view") == 0) {
             double d[3] = {0, 0, 0};
             if (!v || parse_doubles(v, d, 2, 3) < 0)
@@ -256,6 +265,13 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
     }
     if (o->partial_slabs && !o->reference) {
         fprintf(stderr, "volfix-sim: --partial-slabs is an option of the reference: give --reference too\n");
+        return 2;
+    }
+    /* the core has one ray per voxel column only (vf_params_t has no field for more yet); the truth has no
+     * intermediate image, so render --truth ignores the option (compare --against truth still renders the core) */
+    if (o->rays != 1 && !o->reference && !(o->truth && (groups & SIM_OPT_TRUTH))) {
+        fprintf(stderr, "volfix-sim: --rays %d: the core has 1 ray per voxel column only; more are rendered by the "
+                        "reference (volfix-sim render --reference)\n", o->rays);
         return 2;
     }
     if (o->preset && o->tf_file) {

@@ -55,11 +55,13 @@ typedef struct study_reference {
 /* Where one scene's distance from the truth comes from (study_floor.c): the floor, exact ray integrals at the
  * intermediate pixels warped, against the truth; per mode (point, preint1, preclass, as ref_mode_t) and side-face
  * rule ([0] section 4's whole slabs, [1] partial slabs) the double reference's intermediate image against those
- * exact integrals (the integration alone) and its final image against the truth. PSNR in dB. */
+ * exact integrals (the integration alone) and its final image against the truth. PSNR in dB. The intermediate
+ * image has the scene's rays per voxel column (sim_scene_t.rays; the study's scenes have 1). */
 #define STUDY_FLOOR_MODES 3
 typedef struct study_floor {
     int done, scene;
-    int int_w, int_h;
+    int rays;              /* R: R x R intermediate pixels per voxel */
+    int int_w, int_h;      /* the intermediate image, R (int_w - 1) + 1 by R (int_h - 1) + 1 of section 3 */
     double exact_db;
     double integration_db[STUDY_FLOOR_MODES][2];
     double truth_db[STUDY_FLOOR_MODES][2];

@@ -1,6 +1,7 @@
 /*
  * study_floor.c: how much of shear-warp's distance from the ground truth is the slab integration, and how much
- * the intermediate image's resolution (one ray per voxel column) and the warp. For one scene:
+ * the intermediate image's resolution (one ray per voxel column, or the scene's R x R: docs/algorithm.md section 4b)
+ * and the warp. For one scene:
  *
  *   - the floor: the truth's own exact ray integrals taken at the intermediate pixels and warped as shear-warp
  *     warps them, against the truth's image: the best any slab integration can do at this resolution;
@@ -25,11 +26,12 @@ static uint8_t level(double x)
     return (uint8_t)floor(255 * fmin(fmax(x, 0), 1) + 0.5);
 }
 
-/* Warp an intermediate image (R, G, B, A doubles) and compare the result with the truth's image. */
-static double warped_against_truth(const ref_factor_t *f, const double *inter, const double background[3],
+/* Warp an intermediate image of R rays per voxel column (R, G, B, A doubles) and compare the result with the
+ * truth's image. */
+static double warped_against_truth(const ref_factor_t *f, int rays, const double *inter, const double background[3],
                                    const uint8_t *truth, size_t pixels, double *rgb, uint8_t *bytes)
 {
-    ref_warp(f, inter, background, rgb);
+    ref_warp_rays(f, rays, inter, background, rgb);
     for (size_t n = 0; n < 3 * pixels; n++)
         bytes[n] = level(rgb[n]);
     sim_diff_t d;
@@ -53,16 +55,17 @@ int study_floor(study_t *st, int scene, study_floor_t *out, char *err, size_t er
     truth_tf_t *tf = malloc(sizeof *tf);
     const truth_opts_t opts = TRUTH_OPTS_DEFAULT;
     const size_t pixels = (size_t)s->width * s->height;
-    const int N = (int)s->params.table_size;
-    int status = 2;
+    const int N = (int)s->params.table_size, R = s->rays > 1 ? s->rays : 1;
+    int status = 2, W = 0, H = 0;
     double *exact = NULL, *inter = NULL, *table = NULL, *rgb = malloc(sizeof(double) * 3 * pixels);
     uint8_t *bytes = malloc(3 * pixels);
     if (!tf || !rgb || !bytes || ref_factor(&in.vol, &in.view, (int)s->width, (int)s->height, &f) ||
-        truth_camera(&in.vol, &in.view, (int)s->width, (int)s->height, &cam) || truth_tf_init(tf, in.tf, in.npoints)) {
+        ref_rays_size(&f, R, &W, &H) || truth_camera(&in.vol, &in.view, (int)s->width, (int)s->height, &cam) ||
+        truth_tf_init(tf, in.tf, in.npoints)) {
         snprintf(err, errlen, "%s: cannot set up the floor's rays", st->scenes[scene].label);
         goto done;
     }
-    const size_t ipx = (size_t)f.int_w * f.int_h;
+    const size_t ipx = (size_t)W * H;
     exact = calloc(4 * ipx, sizeof(double));
     inter = malloc(sizeof(double) * 4 * ipx);
     table = malloc(sizeof(double) * 4 * (size_t)N * N);
@@ -71,27 +74,29 @@ int study_floor(study_t *st, int scene, study_floor_t *out, char *err, size_t er
         goto done;
     }
 
-    /* The truth's rays through the intermediate pixels: invert the warp's map u = u0 + du_dx x + du_dy y. */
+    /* The truth's rays through the intermediate pixels (U, V), at intermediate points (u, v) = (U / R, V / R):
+     * invert the warp's map u = u0 + du_dx x + du_dy y. */
     const double det = f.du_dx * f.dv_dy - f.du_dy * f.dv_dx;
-    for (int v = 0; v < f.int_h; v++)
-        for (int u = 0; u < f.int_w; u++) {
-            double a = u - f.u0, b = v - f.v0;
+    for (int V = 0; V < H; V++)
+        for (int U = 0; U < W; U++) {
+            double a = (double)U / R - f.u0, b = (double)V / R - f.v0;
             truth_acc_t acc;
             truth_trace(&in.vol, tf, &cam, &opts, (a * f.dv_dy - b * f.du_dy) / det, (f.du_dx * b - f.dv_dx * a) / det,
                         &acc);
-            double *p = exact + 4 * ((size_t)v * f.int_w + u);
+            double *p = exact + 4 * ((size_t)V * W + U);
             p[0] = acc.C[0], p[1] = acc.C[1], p[2] = acc.C[2], p[3] = 1 - acc.T;
         }
-    out->int_w = f.int_w;
-    out->int_h = f.int_h;
-    out->exact_db = warped_against_truth(&f, exact, in.background, truth, pixels, rgb, bytes);
+    out->rays = R;
+    out->int_w = W;
+    out->int_h = H;
+    out->exact_db = warped_against_truth(&f, R, exact, in.background, truth, pixels, rgb, bytes);
 
     for (int mode = 0; mode < STUDY_FLOOR_MODES; mode++) {
         int fail = mode == REF_MODE_PREINT1 ? ref_preint_table(in.tf, in.npoints, N, f.slab, table)
                                             : ref_point_table(in.tf, in.npoints, N, f.slab, table);
         for (int partial = 0; partial < 2 && !fail; partial++) {
-            fail = ref_composite_sides(&in.vol, &f, (ref_mode_t)mode, REF_LOOKUP_NEAREST, N, table, NULL, partial,
-                                       inter);
+            fail = ref_composite_rays(&in.vol, &f, (ref_mode_t)mode, REF_LOOKUP_NEAREST, N, table, NULL, partial, R,
+                                      inter);
             if (fail)
                 break;
             double se = 0;
@@ -101,7 +106,8 @@ int study_floor(study_t *st, int scene, study_floor_t *out, char *err, size_t er
                     se += d * d;
                 }
             out->integration_db[mode][partial] = psnr(se, 3.0 * ipx);
-            out->truth_db[mode][partial] = warped_against_truth(&f, inter, in.background, truth, pixels, rgb, bytes);
+            out->truth_db[mode][partial] = warped_against_truth(&f, R, inter, in.background, truth, pixels, rgb,
+                                                                bytes);
         }
         if (fail) {
             snprintf(err, errlen, "%s: the reference failed (mode %d)", st->scenes[scene].label, mode);

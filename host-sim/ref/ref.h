@@ -5,7 +5,8 @@
  * image and the core's is the core's fixed-point error alone. It skips nothing (no run-length encoding, no skip
  * links), builds the pre-integrated table by brute force, and keeps every intermediate value in double. The
  * only quantisations are the ones the spec imposes on both implementations: the 8-bit window, the table's
- * nearest-entry lookup, the 2^-16 grid of the slice offsets and, when asked for (section 4b), 8-bit tables.
+ * nearest-entry lookup, the 2^-16 grid of the slice offsets and, when asked for, 8-bit tables (section 4b) and
+ * partial slabs' side-face crossings and face scalars (section 4c).
  * Callers hand the reference the quantised inputs the core sees (spacing q / 65536, zoom q / 65536, TF scalar
  * q / 256, colours q / 65535).
  *
@@ -14,7 +15,7 @@
  *   ref_tables.c   section 2: transfer function, classification, point table, pre-integrated table
  *   ref_factor.c   section 3: rotation, principal axis, shears, slice offsets, slab length, warp map
  *   ref_options.c  section 4b: bilinear table lookup, 8-bit tables, the lut slab-length correction
- *   ref_render.c   sections 4, 4b and 5: compositing into the intermediate image, the warp, the whole frame
+ *   ref_render.c   sections 4, 4b, 4c and 5: compositing into the intermediate image, the warp, the whole frame
  * Every function that returns int (but ref_table_index) returns 0, or -1 on an argument outside the spec's ranges
  * or when out of memory.
  */
@@ -62,12 +63,15 @@ typedef struct ref_params {
     ref_lookup_t lookup;         /* nearest (default) or bilinear; ignored by preclass (voxels' nearest entries) */
     int table_bits;              /* 16 (default; 0 means 16) or 8: every table value rounded to a multiple of 1/255 */
     ref_correction_t correction; /* rebuild (default) or lut */
-    /* Not (yet) in docs/algorithm.md, for studies of the reference alone (issue 4): 0, section 4 as written (a slab
-     * whose front or back sample is outside the box's side faces is left out; every slice of order 0 stands for
-     * one slab); 1, partial slabs: a ray's part of a slab inside the box is composited from the side-face
-     * crossing on, with the entry corrected for its length, and order 0's slices stand for the ray's part in the
-     * box from halfway to the slice before to halfway to the slice after (ref_render.c says exactly how). */
+    /* Section 4c. 0, section 4 as written (a slab whose front or back sample is outside the box's side faces is
+     * left out; every slice of order 0 stands for one slab); 1, partial slabs: a ray's part of a slab inside the
+     * box is composited from the side-face crossing on, with the entry corrected for its length, and order 0's
+     * slices stand for the ray's part in the box from halfway to the slice before to halfway to the slice after.
+     * Not in the core yet. */
     int partial_slabs;
+    /* Section 4b. Rays R per voxel column along each intermediate axis, 1, 2, 4, 8 or 16 (0 means 1): the
+     * intermediate image has R x R pixels per voxel and the warp reads it at (R u, R v). Not in the core yet. */
+    int rays;
 } ref_params_t;
 
 typedef struct ref_view {
@@ -83,7 +87,8 @@ typedef struct ref_factor {
     double si, sj;              /* shear: intermediate pixels per slice */
     double ti, tj;              /* translation of slice 0 (before snapping) */
     double slab;                /* distance between consecutive slices along a ray, units of d_ref */
-    int int_w, int_h;           /* intermediate image: covers every pixel some slice covers */
+    int int_w, int_h;           /* intermediate image for one ray per voxel column (R = 1): covers every pixel
+                                 * some slice covers; ref_rays_size gives it for R rays */
     int out_w, out_h;           /* final image */
     double R[3][3];             /* rotation world -> eye, R = Rz(roll) Rx(elevation) Ry(azimuth) */
     double Sr[3];               /* relative spacing sp / min(sp) */
@@ -103,6 +108,7 @@ typedef struct ref_factor {
 #define REF_ERT_THRESHOLD (1.0 - 1.0 / 1024.0) /* early ray termination: A >= 1 - 2^-10 */
 #define REF_LUT_KNOTS 1024                       /* lut correction: knots a_k = k / 1024, k = 0..1024 */
 #define REF_LUT_D0 1.0                           /* lut correction: the slab length the tables are built for */
+#define REF_MAX_RAYS 16                          /* rays per voxel column: 1, 2, 4, 8 or 16 */
 
 /* ---- ref_window.c -------------------------------------------------------------------------------------- */
 
@@ -188,13 +194,27 @@ int ref_composite(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mod
 int ref_composite_ex(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
                      const double *table, const ref_lut_t *lut, double *inter);
 
-/* The same with a choice of section 4's side-face rule (partial_slabs as in ref_params_t). */
+/* The same with a choice of the side-face rule: section 4's, or partial slabs (section 4c; as in ref_params_t). */
 int ref_composite_sides(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
                         const double *table, const ref_lut_t *lut, int partial_slabs, double *inter);
+
+/* The intermediate image of R rays per voxel column (section 3): *w = R (int_w - 1) + 1, *h = R (int_h - 1) + 1
+ * pixels; pixel (U, V) is the ray through intermediate point (U / R, V / R). Returns 0, or -1 when R is not 1, 2,
+ * 4, 8 or 16 (0 is not accepted here: callers say what they mean). */
+int ref_rays_size(const ref_factor_t *f, int rays, int *w, int *h);
+
+/* The same with R rays per voxel column: inter[4 (V w + U) + 0..3] for the w x h pixels of ref_rays_size. R = 1 is
+ * ref_composite_sides. */
+int ref_composite_rays(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
+                       const double *table, const ref_lut_t *lut, int partial_slabs, int rays, double *inter);
 
 /* Resample the intermediate image bilinearly (outside: transparent) onto the final image:
  * rgb[3 (py out_w + px) + c] = C + (1 - A) background[c]. */
 void ref_warp(const ref_factor_t *f, const double *inter, const double background[3], double *rgb);
+
+/* The same for an intermediate image of R rays per voxel column (ref_rays_size): final pixel (px, py), which sees
+ * intermediate point (u, v), reads it at (R u, R v). Returns 0, or -1 for a bad R. */
+int ref_warp_rays(const ref_factor_t *f, int rays, const double *inter, const double background[3], double *rgb);
 
 /* The whole frame: factor, tables (for the slab length d, or for d0 = 1 with the lut correction for rho = d),
  * table bits, composite, warp. rgb: out_w * out_h * 3 in [0, 1]. factor_out may be NULL. */

@@ -1,4 +1,4 @@
-/* ref_render.c: compositing into the intermediate image, the warp, and the whole frame (sections 4, 4b and 5). */
+/* ref_render.c: compositing into the intermediate image, the warp, and the whole frame (sections 4, 4b, 4c, 5). */
 #include "ref/ref.h"
 
 #include <math.h>
@@ -74,12 +74,27 @@ static void composite(double *pix, const double *seg)
     pix[3] += t * seg[0];
 }
 
-/* Integer pixels u with 0 <= u - ou <= n - 1, clipped to the image (a no-op by construction of int_w/int_h). */
-static void covered(double ou, int n, int size, int *lo, int *hi)
+/* Integer pixels U with 0 <= U / R - ou <= n - 1, clipped to the image (for R = 1 a no-op by construction of
+ * int_w/int_h; for R > 1 the image ends at u = int_w - 1, section 3). R ou is exact: R divides 2^16. */
+static void covered(double ou, int n, int rays, int size, int *lo, int *hi)
 {
-    double a = ceil(ou), b = floor(ou + (n - 1));
+    double a = ceil(rays * ou), b = floor(rays * (ou + (n - 1)));
     *lo = a < 0 ? 0 : (int)a;
     *hi = b > size - 1 ? size - 1 : (int)b;
+}
+
+static int rays_valid(int rays)
+{
+    return rays == 1 || rays == 2 || rays == 4 || rays == 8 || rays == 16;
+}
+
+int ref_rays_size(const ref_factor_t *f, int rays, int *w, int *h)
+{
+    if (!f || !rays_valid(rays))
+        return -1;
+    *w = rays * (f->int_w - 1) + 1;
+    *h = rays * (f->int_h - 1) + 1;
+    return 0;
 }
 
 static int mode_valid(ref_mode_t mode)
@@ -98,12 +113,15 @@ int ref_composite(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mod
     return ref_composite_ex(vol, f, mode, REF_LOOKUP_NEAREST, N, table, NULL, inter);
 }
 
-/* The part of slab k (between slices k and k + 1) that the ray through pixel (u, v) spends inside the box, as
- * fractions phi of the slab: [*lo, *hi], empty when *lo > *hi. Along the slab the ray's slice position is
- * (x0 + phi dx, y0 + phi dy). Each bound is rounded to the 2^-16 grid (half up), which integer code can repeat
- * exactly (the ratio of two Q16.16 values); a sample that is inside gives its end of the slab exactly. */
-static void slab_inside(const ref_factor_t *f, const double ou[2], const double ov[2], int u, int v, double *lo,
-                        double *hi)
+/* The part of slab k (between slices k and k + 1) that the ray through intermediate point (u, v) (u = U / R) spends
+ * inside the box, as fractions phi of the slab: [*lo, *hi], empty when *lo > *hi. Along the slab the ray's slice
+ * position is (x0 + phi dx, y0 + phi dy). Each bound is rounded to the 2^-16 grid (half up), which integer code
+ * can repeat exactly (the ratio of two Q16.16 values); a sample that is inside gives its end of the slab exactly.
+ * In double the quotient is exact enough: its numerator and denominator are below 2^30 in units of 2^-16, so its
+ * error is far below the 1 / (2 |dx| 2^16) that separates a non-tie from the nearest half-step, and a tie is
+ * representable. */
+static void slab_inside(const ref_factor_t *f, const double ou[2], const double ov[2], double u, double v,
+                        double *lo, double *hi)
 {
     double a = 0, b = 1;
     const double p0[2] = {u - ou[0], v - ov[0]}, dp[2] = {ou[0] - ou[1], ov[0] - ov[1]};
@@ -123,17 +141,30 @@ static void slab_inside(const ref_factor_t *f, const double ou[2], const double 
     *hi = b;
 }
 
+/* (1 - phi) a + phi b rounded half up to the 2^-32 grid, exactly, for a and b on the 2^-32 grid in [0, 255] and
+ * phi on the 2^-16 grid in [0, 1]. The exact value lies on the 2^-48 grid and needs up to 56 bits, more than a
+ * double holds (computed directly, about 4 in 10^5 random cases round the other way than integer code does,
+ * most of them ties). So a and b are split at the 2^-16 grid: the high parts' sum lies on the 2^-32 grid (at most
+ * 41 bits a product), the low parts' sum on the 2^-48 grid below 2^-15 (33 bits), both exact, and only the low
+ * sum is rounded. */
+static double lerp_q32(double a, double b, double phi)
+{
+    double a_hi = floor(a * 65536) / 65536, b_hi = floor(b * 65536) / 65536;
+    double hi = (1 - phi) * a_hi + phi * b_hi, lo = (1 - phi) * (a - a_hi) + phi * (b - b_hi);
+    return hi + floor(lo * 4294967296.0 + 0.5) / 4294967296.0;
+}
+
 /* The scalar where the ray through (u, v) crosses the box's side at fraction phi of slab k: the trilinear value
  * at slice position (X, Y) = (x0 + phi dx, y0 + phi dy), each rounded to the 2^-16 grid and clamped to the
- * slice, between the two slices: (1 - phi) S_k(X, Y) + phi S_k+1(X, Y), rounded to the 2^-32 grid. */
+ * slice, between the two slices: (1 - phi) S_k(X, Y) + phi S_k+1(X, Y), rounded to the 2^-32 grid. x0 + phi dx
+ * lies on the 2^-32 grid below 2^14: exact. */
 static double face_scalar(const ref_factor_t *f, const uint8_t *front, const uint8_t *back, const double ou[2],
-                          const double ov[2], int u, int v, double phi)
+                          const double ov[2], double u, double v, double phi)
 {
     double x = (u - ou[0]) + phi * (ou[0] - ou[1]), y = (v - ov[0]) + phi * (ov[0] - ov[1]);
     x = fmin(fmax(floor(x * 65536 + 0.5) / 65536, 0), f->ni - 1);
     y = fmin(fmax(floor(y * 65536 + 0.5) / 65536, 0), f->nj - 1);
-    double s = (1 - phi) * sample(front, f->ni, x, y) + phi * sample(back, f->ni, x, y);
-    return floor(s * 4294967296.0 + 0.5) / 4294967296.0;
+    return lerp_q32(sample(front, f->ni, x, y), sample(back, f->ni, x, y), phi);
 }
 
 /* A segment of rho slabs' length from an entry made for one slab: a' = 1 - (1 - a)^rho (exact: the optical depth
@@ -158,7 +189,8 @@ static int inside(const ref_factor_t *f, double x, double y)
  * other sample is outside (a ray that enters or leaves through a side face); the front and back slices have no
  * slab beyond them. In slabs: rho = (slab k - 1: 1/2 if slice k - 1's sample is inside, else the part of that
  * slab inside the box) + (slab k: likewise with slice k + 1). */
-static double order0_length(const ref_factor_t *f, int k, int u, int v, const double ou3[3], const double ov3[3])
+static double order0_length(const ref_factor_t *f, int k, double u, double v, const double ou3[3],
+                            const double ov3[3])
 {
     double rho = 0, lo, hi;
     if (k > 0) {
@@ -172,11 +204,11 @@ static double order0_length(const ref_factor_t *f, int k, int u, int v, const do
     return rho;
 }
 
-static void union_range(double ou0, double ou1, int n, int size, int *lo, int *hi)
+static void union_range(double ou0, double ou1, int n, int rays, int size, int *lo, int *hi)
 {
     int a0, b0, a1, b1;
-    covered(ou0, n, size, &a0, &b0);
-    covered(ou1, n, size, &a1, &b1);
+    covered(ou0, n, rays, size, &a0, &b0);
+    covered(ou1, n, rays, size, &a1, &b1);
     *lo = a0 < a1 ? a0 : a1;
     *hi = b0 > b1 ? b0 : b1;
 }
@@ -190,8 +222,17 @@ int ref_composite_ex(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t 
 int ref_composite_sides(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
                         const double *table, const ref_lut_t *lut, int partial_slabs, double *inter)
 {
+    return ref_composite_rays(vol, f, mode, lookup, N, table, lut, partial_slabs, 1, inter);
+}
+
+/* Pixel (U, V) is the ray through intermediate point (u, v) = (U / R, V / R), exact in double (R divides 2^16, so
+ * u - ou_k stays on the 2^-16 grid and every sample stays exact). */
+int ref_composite_rays(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
+                       const double *table, const ref_lut_t *lut, int partial_slabs, int rays, double *inter)
+{
+    int W, H;
     if (!vol || !vol->scalars || !f || !table || !inter || N < REF_MIN_TABLE || N > REF_MAX_TABLE ||
-        !mode_valid(mode) || !lookup_valid(lookup))
+        !mode_valid(mode) || !lookup_valid(lookup) || ref_rays_size(f, rays, &W, &H))
         return -1;
     uint8_t *std = standard_slices(vol, f);
     size_t slice_size = (size_t)f->ni * (size_t)f->nj;
@@ -201,7 +242,7 @@ int ref_composite_sides(const ref_volume_t *vol, const ref_factor_t *f, ref_mode
         free(cls);
         return -1;
     }
-    for (size_t n = 0; n < 4 * (size_t)f->int_w * (size_t)f->int_h; n++)
+    for (size_t n = 0; n < 4 * (size_t)W * (size_t)H; n++)
         inter[n] = 0;
 
     if (mode != REF_MODE_PREINT1) {
@@ -213,14 +254,15 @@ int ref_composite_sides(const ref_volume_t *vol, const ref_factor_t *f, ref_mode
                 if (k + q >= 0 && k + q < f->nk)
                     ref_factor_offset(f, k + q, &ou3[q + 1], &ov3[q + 1]);
             int u_lo, u_hi, v_lo, v_hi;
-            covered(ou3[1], f->ni, f->int_w, &u_lo, &u_hi);
-            covered(ov3[1], f->nj, f->int_h, &v_lo, &v_hi);
+            covered(ou3[1], f->ni, rays, W, &u_lo, &u_hi);
+            covered(ov3[1], f->nj, rays, H, &v_lo, &v_hi);
             const uint8_t *slice = std + (size_t)k * slice_size;
             if (cls)
                 classify_slice(slice, slice_size, N, table, cls);
-            for (int v = v_lo; v <= v_hi; v++) {
-                for (int u = u_lo; u <= u_hi; u++) {
-                    double *pix = inter + 4 * ((size_t)v * (size_t)f->int_w + (size_t)u), seg[4];
+            for (int V = v_lo; V <= v_hi; V++) {
+                for (int U = u_lo; U <= u_hi; U++) {
+                    double *pix = inter + 4 * ((size_t)V * (size_t)W + (size_t)U), seg[4];
+                    const double u = (double)U / rays, v = (double)V / rays;
                     if (pix[3] >= REF_ERT_THRESHOLD)
                         continue; /* early ray termination: no further segments */
                     double rho = partial_slabs ? order0_length(f, k, u, v, ou3, ov3) : 1;
@@ -245,12 +287,13 @@ int ref_composite_sides(const ref_volume_t *vol, const ref_factor_t *f, ref_mode
             ref_factor_offset(f, k, &ou[0], &ov[0]);
             ref_factor_offset(f, k + 1, &ou[1], &ov[1]);
             int u_lo, u_hi, v_lo, v_hi;
-            union_range(ou[0], ou[1], f->ni, f->int_w, &u_lo, &u_hi);
-            union_range(ov[0], ov[1], f->nj, f->int_h, &v_lo, &v_hi);
+            union_range(ou[0], ou[1], f->ni, rays, W, &u_lo, &u_hi);
+            union_range(ov[0], ov[1], f->nj, rays, H, &v_lo, &v_hi);
             const uint8_t *front = std + (size_t)k * slice_size, *back = front + slice_size;
-            for (int v = v_lo; v <= v_hi; v++) {
-                for (int u = u_lo; u <= u_hi; u++) {
-                    double *pix = inter + 4 * ((size_t)v * (size_t)f->int_w + (size_t)u), seg[4], lo = 0, hi = 1;
+            for (int V = v_lo; V <= v_hi; V++) {
+                for (int U = u_lo; U <= u_hi; U++) {
+                    double *pix = inter + 4 * ((size_t)V * (size_t)W + (size_t)U), seg[4], lo = 0, hi = 1;
+                    const double u = (double)U / rays, v = (double)V / rays;
                     if (pix[3] >= REF_ERT_THRESHOLD)
                         continue; /* early ray termination: no further segments */
                     int in_f = inside(f, u - ou[0], v - ov[0]), in_b = inside(f, u - ou[1], v - ov[1]);
@@ -283,18 +326,28 @@ int ref_composite_sides(const ref_volume_t *vol, const ref_factor_t *f, ref_mode
 
 void ref_warp(const ref_factor_t *f, const double *inter, const double background[3], double *rgb)
 {
+    ref_warp_rays(f, 1, inter, background, rgb);
+}
+
+int ref_warp_rays(const ref_factor_t *f, int rays, const double *inter, const double background[3], double *rgb)
+{
+    int W, H;
+    if (ref_rays_size(f, rays, &W, &H))
+        return -1;
     for (int py = 0; py < f->out_h; py++) {
         for (int px = 0; px < f->out_w; px++) {
             double u, v, acc[4] = {0, 0, 0, 0};
             ref_factor_warp(f, px, py, &u, &v);
-            if (u > -1 && v > -1 && u < f->int_w && v < f->int_h) {
+            u *= rays; /* the R-scaled image's pixel coordinates: exact */
+            v *= rays;
+            if (u > -1 && v > -1 && u < W && v < H) {
                 double u0 = floor(u), v0 = floor(v), fu = u - u0, fv = v - v0;
                 for (int n = 0; n < 4; n++) {
                     int x = (int)u0 + (n & 1), y = (int)v0 + (n >> 1);
                     double w = ((n & 1) ? fu : 1 - fu) * ((n >> 1) ? fv : 1 - fv);
-                    if (x < 0 || y < 0 || x >= f->int_w || y >= f->int_h || w == 0)
+                    if (x < 0 || y < 0 || x >= W || y >= H || w == 0)
                         continue; /* outside the intermediate image: transparent black */
-                    const double *pix = inter + 4 * ((size_t)y * (size_t)f->int_w + (size_t)x);
+                    const double *pix = inter + 4 * ((size_t)y * (size_t)W + (size_t)x);
                     for (int c = 0; c < 4; c++)
                         acc[c] += w * pix[c];
                 }
@@ -304,16 +357,18 @@ void ref_warp(const ref_factor_t *f, const double *inter, const double backgroun
                 out[c] = acc[c] + (1 - acc[3]) * background[c];
         }
     }
+    return 0;
 }
 
 int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const ref_params_t *p,
                const ref_view_t *view, int out_w, int out_h, double *rgb, ref_factor_t *factor_out)
 {
     ref_factor_t f;
+    int rays = p && p->rays == 0 ? 1 : p ? p->rays : 0, W, H;
     if (!vol || !vol->scalars || !p || !rgb || p->table_size < REF_MIN_TABLE || p->table_size > REF_MAX_TABLE ||
         !mode_valid(p->mode) || !lookup_valid(p->lookup) ||
         (p->table_bits != 0 && p->table_bits != 16 && p->table_bits != 8) ||
-        (p->correction != REF_CORRECTION_REBUILD && p->correction != REF_CORRECTION_LUT) ||
+        (p->correction != REF_CORRECTION_REBUILD && p->correction != REF_CORRECTION_LUT) || !rays_valid(rays) ||
         ref_factor(vol, view, out_w, out_h, &f))
         return -1;
     if (p->slice_offsets_q16 && ref_factor_adopt_offsets(&f, p->slice_offsets_q16, p->slice_k_axis, p->slice_k_flip))
@@ -323,7 +378,8 @@ int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, c
     int lut_on = p->correction == REF_CORRECTION_LUT;
     double d = lut_on ? REF_LUT_D0 : f.slab; /* lut: tables for d0, every segment corrected for rho = d / d0 */
     double *table = malloc(4 * entries * sizeof(double));
-    double *inter = malloc(4 * (size_t)f.int_w * (size_t)f.int_h * sizeof(double));
+    ref_rays_size(&f, rays, &W, &H);
+    double *inter = malloc(4 * (size_t)W * (size_t)H * sizeof(double));
     ref_lut_t *lut = lut_on ? malloc(sizeof *lut) : NULL;
     int rc = -1;
     if (table && inter && (lut || !lut_on)) {
@@ -334,9 +390,10 @@ int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, c
         if (rc == 0 && lut)
             rc = ref_lut_init(lut, f.slab / REF_LUT_D0);
         if (rc == 0)
-            rc = ref_composite_sides(vol, &f, p->mode, p->lookup, p->table_size, table, lut, p->partial_slabs, inter);
+            rc = ref_composite_rays(vol, &f, p->mode, p->lookup, p->table_size, table, lut, p->partial_slabs, rays,
+                                    inter);
         if (rc == 0)
-            ref_warp(&f, inter, p->background, rgb);
+            rc = ref_warp_rays(&f, rays, inter, p->background, rgb);
     }
     free(table);
     free(inter);

@@ -53,6 +53,36 @@ expect_error "no output" "no output file (-o OUT.png, or --hash)" render phantom
 expect_error "no volume" "no volume given" compare --json
 expect_error "preset and tf" "give --preset or --tf, not both" render phantom:sphere:8 --preset ramp --tf x -o "$tmp/x.png"
 
+# --rays: 1, 2, 4, 8 or 16; above 1 only the reference has it (docs/algorithm.md section 4b)
+for cmd in render compare bench ray; do
+    if "$sim" $cmd --help 2>&1 | grep -q -- '--rays N'; then
+        ok "$cmd --help documents --rays"
+    else
+        fail "$cmd --help" "no --rays"
+    fi
+done
+for bad in 0 3 32 -4 2.5 two; do
+    expect_error "bad rays $bad" "--rays $bad: expected 1, 2, 4, 8 or 16" render phantom:sphere:8 --reference --rays $bad --hash
+done
+expect_error "rays missing" "--rays (missing): expected 1, 2, 4, 8 or 16" render phantom:sphere:8 --reference --hash --rays
+expect_error "rays without the reference" "--rays 4: the core has 1 ray per voxel column only" render phantom:sphere:8 --rays 4 -o "$tmp/x.png"
+expect_error "compare with rays" "--rays 2: the core has 1 ray per voxel column only" compare phantom:sphere:8 --rays 2 --against truth
+expect_error "bench with rays" "--rays 16: the core has 1 ray per voxel column only" bench phantom:sphere:8 --rays 16
+rays_hash() { "$sim" render phantom:marschner-lobb:16 --size 48x40 --preset sharp "$@" --hash 2>&1 | cut -c1-16; }
+if [ "$(rays_hash --rays 1)" = "$(rays_hash)" ] && [ "$(rays_hash --reference --rays 1)" = "$(rays_hash --reference)" ] &&
+    [ "$(rays_hash --reference --rays 1 --partial-slabs)" = "$(rays_hash --reference --partial-slabs)" ]; then
+    ok "--rays 1 is the default, for the core and the reference"
+else
+    fail "--rays 1" "the hashes differ from the default's"
+fi
+if "$sim" render phantom:marschner-lobb:16 --size 48x40 --preset sharp --reference --rays 4 --hash >"$tmp/out" 2>&1 &&
+    grep -q ' rays 4 48x40 ' "$tmp/out" && [ "$(cut -c1-16 "$tmp/out")" != "$(rays_hash --reference)" ] &&
+    [ "$(rays_hash --truth --rays 4)" = "$(rays_hash --truth)" ]; then
+    ok "--reference --rays 4 renders another image and says so; --truth ignores --rays"
+else
+    fail "--rays 4" "$(cat "$tmp/out")"
+fi
+
 # bad volumes
 printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n' >"$tmp/trunc.nrrd"
 head -c 40 /dev/zero >>"$tmp/trunc.nrrd"
