@@ -95,9 +95,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
             for (int32_t v = lo; v <= hi; v++) {
                 const uint16_t *end, *p = vfi_runs_row(runs, kc, (uint32_t)(v - place[0].cv), &end);
                 run_merge_t m;
-                m.s[0].p = p, m.s[0].end = end, m.s[0].pos = place[0].cu;
-                m.live[0] = vfi_stream_next(&m.s[0], &m.a[0], &m.b[0]);
-                m.live[1] = false;
+                vfi_merge_init(&m, p, end, place[0].cu, NULL, NULL, 0);
                 job.next = next + (size_t)(v - (int32_t)v0) * (width + 1);
                 job.pixels = r->intermediate + (size_t)v * width * 4;
                 job.row_data = place[0].data + (size_t)(v - place[0].cv) * l->row;
@@ -126,10 +124,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
             const uint16_t *end_f, *p_f = vfi_runs_row(runs, kc, (uint32_t)(v - front->cv), &end_f);
             const uint16_t *end_b, *p_b = vfi_runs_row(runs, kc, (uint32_t)(v - back->cv), &end_b);
             run_merge_t m;
-            m.s[0].p = p_f, m.s[0].end = end_f, m.s[0].pos = front->cu;
-            m.s[1].p = p_b, m.s[1].end = end_b, m.s[1].pos = back->cu;
-            m.live[0] = vfi_stream_next(&m.s[0], &m.a[0], &m.b[0]);
-            m.live[1] = vfi_stream_next(&m.s[1], &m.a[1], &m.b[1]);
+            vfi_merge_init(&m, p_f, end_f, front->cu, p_b, end_b, back->cu);
             const size_t band_row = (size_t)(v - (int32_t)v0);
             row_visits_t *last = &visits[((t + 1) & 1) * rows + band_row], *now = &visits[(t & 1) * rows + band_row];
             now->slab = t;

@@ -20,18 +20,20 @@ typedef struct slice_place {
     int32_t v_lo, v_hi;
 } slice_place_t;
 
-/* A row's visible runs as intervals of pixels. */
+/* A row's visible runs as intervals of pixels: the run list of one cell row (runs.h), from pixel pos on. */
 typedef struct run_stream {
     const uint16_t *p, *end;
     int32_t pos;                /* pixel of the next cell */
 } run_stream_t;
 
-/* The union of a front and a back run stream (order 0: the front stream alone). */
+/* The union of a front and a back run stream (order 0: the front stream alone), as ascending disjoint
+ * intervals. Each stream's current interval is [a, b); an exhausted stream's is [RUN_END, RUN_END). */
 typedef struct run_merge {
     run_stream_t s[2];
-    int32_t a[2], b[2];         /* each stream's current interval [a, b) */
-    bool live[2];
+    int32_t a0, b0, a1, b1;
 } run_merge_t;
+
+#define VFI_RUN_END INT32_MAX
 
 /* Pixels [a, b) of an intermediate row. */
 typedef struct vfi_span {
@@ -127,32 +129,49 @@ static inline uint32_t vfi_next_open(uint16_t *next, uint32_t u)
     return u;
 }
 
-static inline bool vfi_stream_next(run_stream_t *s, int32_t *a, int32_t *b)
+/* Interval [*a, *b) of stream s, or [VFI_RUN_END, VFI_RUN_END) when it has none left. */
+static inline void vfi_stream_next(run_stream_t *s, int32_t *a, int32_t *b)
 {
-    if (s->p == s->end)
-        return false;
+    if (s->p == s->end) {
+        *a = *b = VFI_RUN_END;
+        return;
+    }
     *a = s->pos + s->p[0];
     *b = *a + s->p[1];
     s->pos = *b;
     s->p += 2;
-    return true;
 }
 
-/* The next interval of the union, with overlapping and touching intervals joined. */
+/* Start a merge of one stream (p1 NULL) or two. */
+static inline void vfi_merge_init(run_merge_t *m, const uint16_t *p0, const uint16_t *e0, int32_t pos0,
+                                  const uint16_t *p1, const uint16_t *e1, int32_t pos1)
+{
+    m->s[0].p = p0, m->s[0].end = e0, m->s[0].pos = pos0;
+    m->s[1].p = p1, m->s[1].end = p1 ? e1 : p1, m->s[1].pos = pos1;
+    vfi_stream_next(&m->s[0], &m->a0, &m->b0);
+    vfi_stream_next(&m->s[1], &m->a1, &m->b1);
+}
+
+/* The next interval of the union, with overlapping and touching intervals joined; false when none is left. */
 static inline bool vfi_merge_next(run_merge_t *m, int32_t *a, int32_t *b)
 {
-    if (!m->live[0] && !m->live[1])
-        return false;
-    int x = (!m->live[1] || (m->live[0] && m->a[0] <= m->a[1])) ? 0 : 1;
-    int32_t lo = m->a[x], hi = m->b[x];
-    m->live[x] = vfi_stream_next(&m->s[x], &m->a[x], &m->b[x]);
-    for (;;) {
-        if (m->live[0] && m->a[0] <= hi) {
-            hi = m->b[0] > hi ? m->b[0] : hi;
-            m->live[0] = vfi_stream_next(&m->s[0], &m->a[0], &m->b[0]);
-        } else if (m->live[1] && m->a[1] <= hi) {
-            hi = m->b[1] > hi ? m->b[1] : hi;
-            m->live[1] = vfi_stream_next(&m->s[1], &m->a[1], &m->b[1]);
+    int32_t lo, hi;
+    if (m->a0 <= m->a1) {
+        if (m->a0 == VFI_RUN_END)
+            return false;
+        lo = m->a0, hi = m->b0;
+        vfi_stream_next(&m->s[0], &m->a0, &m->b0);
+    } else {
+        lo = m->a1, hi = m->b1;
+        vfi_stream_next(&m->s[1], &m->a1, &m->b1);
+    }
+    for (;;) { /* an exhausted stream's a is VFI_RUN_END, above any hi */
+        if (m->a0 <= hi) {
+            hi = m->b0 > hi ? m->b0 : hi;
+            vfi_stream_next(&m->s[0], &m->a0, &m->b0);
+        } else if (m->a1 <= hi) {
+            hi = m->b1 > hi ? m->b1 : hi;
+            vfi_stream_next(&m->s[1], &m->a1, &m->b1);
         } else {
             break;
         }
