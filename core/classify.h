@@ -35,12 +35,17 @@ vf_status_t vfi_classify(vfi_classify_t *cls, const vf_tf_t *tf);
 /* Table entry round(s (N - 1) / 255) of a sample s in Q8.32, exactly: floor(X / (255 2^32)) equals
  * floor(floor(X / 2^32) / 255), and the second division is by a constant. Exact matters: a sample exactly
  * between two entries must go the way the reference's goes, or a narrow transfer-function peak flips. */
+static inline uint32_t vfi_entry_of_sample_n(uint32_t n, uint64_t sample_q32)
+{
+    if (n == 256) /* the default: an entry per scalar, round(s) */
+        return (uint32_t)((sample_q32 + (UINT64_C(1) << 31)) >> 32);
+    uint64_t x = sample_q32 * (n - 1) + UINT64_C(255) * (UINT64_C(1) << 31);
+    return (uint32_t)(x >> 32) / 255u;
+}
+
 static inline uint32_t vfi_entry_of_sample(const vfi_classify_t *cls, uint64_t sample_q32)
 {
-    if (cls->n == 256) /* the default: an entry per scalar, round(s) */
-        return (uint32_t)((sample_q32 + (UINT64_C(1) << 31)) >> 32);
-    uint64_t x = sample_q32 * (cls->n - 1) + UINT64_C(255) * (UINT64_C(1) << 31);
-    return (uint32_t)(x >> 32) / 255u;
+    return vfi_entry_of_sample_n(cls->n, sample_q32);
 }
 
 /* Whether a segment whose samples lie between 8-bit scalars lo and hi can touch a visible entry (tau > 0). */

@@ -18,14 +18,6 @@
 /* A pixel stops taking segments once its opacity reaches 1 - 2^-10 (docs/algorithm.md, section 4). */
 #define VFI_OPAQUE_Q15 (VFI_ONE_Q15 - (VFI_ONE_Q15 >> 10))
 
-/* A buffered sample, one 64-bit word: the standard slice it belongs to (high half), so that a sample left over
- * from an earlier slice is never mistaken for the current one and no clearing between slices is needed, and
- * its table position (low half): for nearest lookups the entry times N (the row offset of a front entry in the
- * 2D table), for bilinear lookups the Q.16 position. */
-typedef uint64_t vfi_sample_t;
-
-#define VFI_NO_SLICE UINT64_C(0xFFFFFFFF00000000)
-
 struct vf_renderer {
     vf_params_t params;
     vf_volume_t volume;    /* the caller's description; its voxels are read again on a window change */

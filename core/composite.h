@@ -1,0 +1,184 @@
+/*
+ * composite.h: what the compositing files share (docs/algorithm.md, sections 4 and 4b). composite.c runs a band:
+ * it places each slice in the intermediate image, merges the run-length encoding's visible runs of a row and hands
+ * each row to composite_order0.c (point, preclass: one slice) or composite_order1.c (preint1: one slab).
+ *
+ * Samples are bilinear in the slice and exact: the slice offsets lie on the 2^-16 grid, so a sample is a multiple
+ * of 2^-32 and fits Q8.32, and its nearest table entry is the one the double reference picks.
+ */
+#ifndef VF_COMPOSITE_H
+#define VF_COMPOSITE_H
+
+#include "segment.h"
+
+/* Where a standard slice lands in the intermediate image. */
+typedef struct slice_place {
+    const uint8_t *data;        /* the slice in the standard-order copy */
+    int32_t cu, cv;             /* pixel u = cu + i samples column i at fraction fx (likewise v, rows) */
+    uint32_t fx, fy;            /* Q0.16: the exact fractions (the offsets are on the 2^-16 grid) */
+    int32_t u_lo, u_hi;         /* pixels whose sample is inside the slice, inclusive */
+    int32_t v_lo, v_hi;
+} slice_place_t;
+
+/* A row's visible runs as intervals of pixels: the run list of one cell row (runs.h), from pixel pos on. */
+typedef struct run_stream {
+    const uint16_t *p, *end;
+    int32_t pos;                /* pixel of the next cell */
+} run_stream_t;
+
+/* The union of a front and a back run stream (order 0: the front stream alone), as ascending disjoint
+ * intervals. Each stream's current interval is [a, b); an exhausted stream's is [RUN_END, RUN_END). */
+typedef struct run_merge {
+    run_stream_t s[2];
+    int32_t a0, b0, a1, b1;
+} run_merge_t;
+
+#define VFI_RUN_END INT32_MAX
+
+/* Pixels [a, b) of an intermediate row. */
+typedef struct vfi_span {
+    uint32_t a, b;
+} vfi_span_t;
+
+/* The runs of one intermediate row that a slab walked, so that the next slab knows where the buffered back samples
+ * are its front samples (composite_order1.c). */
+typedef struct row_visits {
+    uint32_t slab;              /* the slab that walked them; UINT32_MAX before any */
+    uint32_t count;
+    vfi_span_t *span;           /* [count], ascending, disjoint */
+} row_visits_t;
+
+/* What one row of one slab (or slice) needs. */
+typedef struct row_job {
+    const slice_place_t *front, *back; /* back is NULL in the order-0 modes */
+    const uint8_t *row_data;           /* the front (order 0: the) slice's row under this intermediate row */
+    const uint8_t *back_row_data;
+    uint32_t row;                      /* bytes per slice row */
+    uint32_t t;                        /* standard slice (order 0) or slab (preint1) */
+    const vfi_classify_t *cls;
+    vfi_lookup_ctx_t lookup;
+    bool plain;                        /* nearest lookup, 16-bit table, no lut, full precision: the fast path */
+    bool bilinear;
+    uint32_t sample_shift;             /* precision studies: samples rounded to 32 - shift fraction bits (0: exact) */
+    uint32_t inter_shift;              /* precision studies: accumulators rounded to multiples of 2^shift in Q1.15 */
+    uint16_t *next;                    /* skip links: next[u] == u for an open pixel, else a pixel further right */
+    uint16_t *pixels;                  /* the intermediate row, r, g, b, a in Q1.15 */
+    /* preint1: the buffered table positions (nearest: entry times N, the front entry's row in the 2D table;
+     * bilinear: Q.16), buffer index = u - shift (a slice buffer's row has one element before index 0); and the
+     * runs the last slab and this one walk in this row */
+    uint32_t *front_buf, *back_buf;
+    int32_t front_shift, back_shift;
+    const row_visits_t *last;          /* NULL when the last slab did not walk this row */
+    row_visits_t *visits;
+} row_job_t;
+
+void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass);
+void vfi_row_preint1(const row_job_t *job, run_merge_t *m);
+
+/* The bilinear sample between p (column i of a slice row) and q (the same column of the next row) with fractions
+ * fx, fy (Q0.16), exactly, in Q8.32: lerps as a + (b - a) f, three multiplications. vfi_sample_at: q = p + row. */
+static inline uint64_t vfi_sample_rows(const uint8_t *p, const uint8_t *q, uint32_t fx, uint32_t fy)
+{
+    int32_t top = (int32_t)(p[0] << 16) + ((int32_t)p[1] - (int32_t)p[0]) * (int32_t)fx; /* Q8.16 */
+    int32_t bottom = (int32_t)(q[0] << 16) + ((int32_t)q[1] - (int32_t)q[0]) * (int32_t)fx;
+    return (uint64_t)((int64_t)top * 65536 + (int64_t)(bottom - top) * (int64_t)fy);
+}
+
+static inline uint64_t vfi_sample_at(const uint8_t *p, uint32_t row, uint32_t fx, uint32_t fy)
+{
+    return vfi_sample_rows(p, p + row, fx, fy);
+}
+
+/* Where a sample of slice sl at p goes in the table: its nearest entry, or (bilinear) its position in Q.16; for
+ * precision studies the sample is first rounded to fewer fraction bits. */
+static inline uint32_t vfi_table_position(const row_job_t *job, const uint8_t *p, const slice_place_t *sl)
+{
+    uint64_t s = vfi_sample_at(p, job->row, sl->fx, sl->fy);
+    if (job->sample_shift)
+        s = ((s + (UINT64_C(1) << (job->sample_shift - 1))) >> job->sample_shift) << job->sample_shift;
+    return job->bilinear ? vfi_position_of_sample(job->cls, s) : vfi_entry_of_sample(job->cls, s);
+}
+
+/* Composite a segment; for precision studies keep the accumulators on a coarser grid. True when the pixel became
+ * opaque. */
+static inline bool vfi_composite_segment(const row_job_t *job, uint16_t *px, const uint32_t seg[4])
+{
+    if (!seg[3])
+        return false;
+    bool opaque = vfi_blend(px, seg);
+    if (job->inter_shift) {
+        const uint32_t half = 1u << (job->inter_shift - 1);
+        for (int c = 0; c < 4; c++) {
+            uint32_t v = ((px[c] + half) >> job->inter_shift) << job->inter_shift;
+            px[c] = (uint16_t)(v > VFI_ONE_Q15 ? VFI_ONE_Q15 : v);
+        }
+        opaque = px[3] >= VFI_OPAQUE_Q15;
+    }
+    return opaque;
+}
+
+/* The first open pixel at or after u; halves the path it walked, so that runs of opaque pixels cost almost nothing
+ * on the next slab. next[width] is always open. */
+static inline uint32_t vfi_next_open(uint16_t *next, uint32_t u)
+{
+    while (next[u] != u) {
+        uint32_t n = next[u];
+        next[u] = next[n];
+        u = n;
+    }
+    return u;
+}
+
+/* Interval [*a, *b) of stream s, or [VFI_RUN_END, VFI_RUN_END) when it has none left. */
+static inline void vfi_stream_next(run_stream_t *s, int32_t *a, int32_t *b)
+{
+    if (s->p == s->end) {
+        *a = *b = VFI_RUN_END;
+        return;
+    }
+    *a = s->pos + s->p[0];
+    *b = *a + s->p[1];
+    s->pos = *b;
+    s->p += 2;
+}
+
+/* Start a merge of one stream (p1 NULL) or two. */
+static inline void vfi_merge_init(run_merge_t *m, const uint16_t *p0, const uint16_t *e0, int32_t pos0,
+                                  const uint16_t *p1, const uint16_t *e1, int32_t pos1)
+{
+    m->s[0].p = p0, m->s[0].end = e0, m->s[0].pos = pos0;
+    m->s[1].p = p1, m->s[1].end = p1 ? e1 : p1, m->s[1].pos = pos1;
+    vfi_stream_next(&m->s[0], &m->a0, &m->b0);
+    vfi_stream_next(&m->s[1], &m->a1, &m->b1);
+}
+
+/* The next interval of the union, with overlapping and touching intervals joined; false when none is left. */
+static inline bool vfi_merge_next(run_merge_t *m, int32_t *a, int32_t *b)
+{
+    int32_t lo, hi;
+    if (m->a0 <= m->a1) {
+        if (m->a0 == VFI_RUN_END)
+            return false;
+        lo = m->a0, hi = m->b0;
+        vfi_stream_next(&m->s[0], &m->a0, &m->b0);
+    } else {
+        lo = m->a1, hi = m->b1;
+        vfi_stream_next(&m->s[1], &m->a1, &m->b1);
+    }
+    for (;;) { /* an exhausted stream's a is VFI_RUN_END, above any hi */
+        if (m->a0 <= hi) {
+            hi = m->b0 > hi ? m->b0 : hi;
+            vfi_stream_next(&m->s[0], &m->a0, &m->b0);
+        } else if (m->a1 <= hi) {
+            hi = m->b1 > hi ? m->b1 : hi;
+            vfi_stream_next(&m->s[1], &m->a1, &m->b1);
+        } else {
+            break;
+        }
+    }
+    *a = lo;
+    *b = hi;
+    return true;
+}
+
+#endif
