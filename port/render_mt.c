@@ -116,7 +116,8 @@ void vfp_render_close(vfp_render_t *r)
 
 static int create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t errlen)
 {
-    free(r->arena_buf);
+    free(r->arena_buf); /* the core lived in it: gone with it, so that a failure below leaves nothing dangling */
+    r->core = NULL;
     r->arena_buf = malloc(arena_bytes);
     if (!r->arena_buf) {
         snprintf(err, errlen, "out of memory: the renderer needs %zu MB", arena_bytes >> 20);
