@@ -31,6 +31,15 @@
 #define VF_MAX_ANISOTROPY 64
 #endif
 
+/* Most rays per voxel column (vf_params_t.rays), and the largest side of an intermediate image: skip links
+ * and run positions are 16-bit. */
+#ifndef VF_MAX_RAYS
+#define VF_MAX_RAYS 16
+#endif
+#ifndef VF_MAX_INTERMEDIATE
+#define VF_MAX_INTERMEDIATE 65535
+#endif
+
 /* Largest output image side. */
 #ifndef VF_MAX_IMAGE
 #define VF_MAX_IMAGE 8192
@@ -38,9 +47,10 @@
 
 /* The hot compositing loops are written once and specialised by calling a static inline body with constant
  * arguments from small wrappers. Compilers that know the attribute are told to inline such a body always: GCC's
- * own heuristics left a 40-line body out of line and tested the constants per pixel. */
+ * own heuristics left a 40-line body out of line and tested the constants per pixel. A build for size (-Os, as
+ * the microcontroller's) keeps one copy instead. */
 #ifndef VF_ALWAYS_INLINE
-#if defined(__GNUC__) || defined(__clang__)
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(__OPTIMIZE_SIZE__)
 #define VF_ALWAYS_INLINE inline __attribute__((always_inline))
 #else
 #define VF_ALWAYS_INLINE inline
