@@ -15,7 +15,8 @@ static uint32_t channel_of(const vf_tf_point_t *p, int channel);
 size_t vfi_classify_bytes(uint32_t n)
 {
     return vfi_arena_block(sizeof(uint32_t) * n) + vfi_arena_block(sizeof(uint32_t) * n * 3) +
-           vfi_arena_block(sizeof(uint32_t) * (n - 1) * 3) + vfi_arena_block(sizeof(uint16_t) * (n + 1));
+           vfi_arena_block(sizeof(uint32_t) * (n - 1) * 3) + vfi_arena_block(sizeof(uint16_t) * (n + 1)) +
+           vfi_arena_block(sizeof(uint64_t) * (n + 1));
 }
 
 vf_status_t vfi_classify_alloc(vfi_classify_t *cls, uint32_t n, vf_lookup_t lookup, vf_arena_t *arena)
@@ -25,7 +26,8 @@ vf_status_t vfi_classify_alloc(vfi_classify_t *cls, uint32_t n, vf_lookup_t look
     cls->colour_q30 = vfi_arena_alloc(arena, sizeof(uint32_t) * n * 3);
     cls->weight_q30 = vfi_arena_alloc(arena, sizeof(uint32_t) * (n - 1) * 3);
     cls->visible_before = vfi_arena_alloc(arena, sizeof(uint16_t) * (n + 1));
-    if (!cls->tau_q28 || !cls->colour_q30 || !cls->weight_q30 || !cls->visible_before)
+    cls->tau_sum_q28 = vfi_arena_alloc(arena, sizeof(uint64_t) * (n + 1));
+    if (!cls->tau_q28 || !cls->colour_q30 || !cls->weight_q30 || !cls->visible_before || !cls->tau_sum_q28)
         return VF_ERR_NOMEM;
     for (uint32_t v = 0; v < 256; v++) {
         uint32_t e = (v * (n - 1) * 2 + 255) / 510; /* round(v (N - 1) / 255) */
@@ -49,6 +51,7 @@ vf_status_t vfi_classify(vfi_classify_t *cls, const vf_tf_t *tf)
             return VF_ERR_TF;
 
     const uint32_t n = cls->n;
+    cls->tau_sum_q28[0] = 0;
     uint16_t visible = 0;
     for (uint32_t i = 0; i < n; i++) {
         /* tau = -ln(1 - a0), a0 clamped to 1 - 2^-16 (vfi_neg_ln_q32 clamps its argument there). */
@@ -57,6 +60,7 @@ vf_status_t vfi_classify(vfi_classify_t *cls, const vf_tf_t *tf)
         for (int c = 0; c < 3; c++)
             cls->colour_q30[i * 3 + c] = (uint32_t)tf_value_q30(tf, i, n, c);
         cls->visible_before[i] = visible;
+        cls->tau_sum_q28[i + 1] = cls->tau_sum_q28[i] + cls->tau_q28[i];
         visible = (uint16_t)(visible + (cls->tau_q28[i] > 0));
     }
     cls->visible_before[n] = visible;

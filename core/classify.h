@@ -14,6 +14,7 @@ typedef struct vfi_classify {
     uint32_t *colour_q30;          /* [n * 3] r, g, b, Q.30 (1.0 = 2^30) */
     uint32_t *weight_q30;          /* [(n - 1) * 3] extinction-weighted mean colour of interval m, Q.30 */
     uint16_t *visible_before;      /* [n + 1] how many entries below i have tau > 0 */
+    uint64_t *tau_sum_q28;         /* [n + 1] the sum of tau_q28 of the entries below i (partial slabs' depth) */
     uint16_t entry_of_scalar[256]; /* entry of each 8-bit voxel scalar (the same rounding as samples) */
     /* The entries a sample between scalars lo and hi can touch are first_of_scalar[lo] .. end_of_scalar[hi] - 1:
      * nearest lookups round(x); bilinear lookups floor(x) .. ceil(x), x = s (N - 1) / 255 (the entry above a

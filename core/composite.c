@@ -8,8 +8,9 @@
  * Scratch per band (the caller's memory, so that bands can run on threads at once):
  *   next     [rows][int_w + 1]      skip links: next[u] == u for an open pixel, else a pixel further right
  *   preint1 only:
- *   buffers  the back samples' table positions, for the next slab: slice-sized, two of [rows][n_i + 2] indexed by
- *            slice column + 1 (front, back), or image-sized, one of [rows][int_w] indexed by pixel, updated in place
+ *   buffers  the back samples' table positions, for the next slab: slice-sized, two of [rows][R (n_i + 1) + 1]
+ *            indexed by R + the pixel's place in the slice, u - cu (front, back), or image-sized, one of
+ *            [rows][int_w] indexed by pixel, updated in place
  *   visits   [2][rows] the runs each row's last two slabs walked (row_visits_t), each with room for the most runs a
  *            row can have, (int_w + 1) / 2 + 1
  */
@@ -18,7 +19,14 @@
 
 #define SCRATCH_ALIGN 16
 
+#define MIN(a, b) ((a) < (b) ? (a) : (b))
+#define MAX(a, b) ((a) > (b) ? (a) : (b))
+
 static void place_slice(const vf_renderer_t *r, uint32_t t, slice_place_t *p);
+static void faces_around(const row_job_t *job, int32_t v, int32_t lo, int32_t hi, int32_t inner_lo, int32_t inner_hi,
+                         bool preclass);
+static inline const uint8_t *slice_row(const vf_renderer_t *r, const slice_place_t *sl, uint32_t step, int32_t v,
+                                       uint32_t *j, uint32_t *fy);
 static unsigned char *align_up(unsigned char *p);
 
 static size_t visits_capacity(uint32_t width)
@@ -34,7 +42,7 @@ size_t vfi_band_scratch_bytes(const vf_renderer_t *r, uint32_t rows)
     if (r->params.buffer == VF_BUFFER_IMAGE)
         bytes += SCRATCH_ALIGN + sizeof(uint32_t) * rows * (size_t)r->max_int_w;
     else
-        bytes += SCRATCH_ALIGN + 2 * sizeof(uint32_t) * rows * ((size_t)r->max_ni + 2);
+        bytes += SCRATCH_ALIGN + 2 * sizeof(uint32_t) * rows * ((size_t)r->params.rays * (r->max_ni + 1) + 1);
     return bytes + 2 * SCRATCH_ALIGN + 2 * rows * (sizeof(row_visits_t) + sizeof(vfi_span_t) * visits_capacity(r->max_int_w));
 }
 
@@ -54,7 +62,10 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
             next[(size_t)y * (width + 1) + u] = (uint16_t)u;
     uint32_t *buf[2] = {NULL, NULL};
     row_visits_t *visits = NULL;
-    const size_t buf_row = image_buffer ? width : l->ni + 2, buf_first = image_buffer ? 0 : 1;
+    /* a slice buffer's row has R elements before the slice's first pixel: a front slice starts at most R pixels
+     * to the right of the back one (|shear| <= 1), and the plain loops address both from the back's */
+    const uint32_t rays = r->params.rays;
+    const size_t buf_row = image_buffer ? width : (size_t)rays * (l->ni + 1) + 1, buf_first = image_buffer ? 0 : rays;
     if (r->params.mode == VF_MODE_PREINT1) {
         buf[0] = (uint32_t *)align_up((unsigned char *)(next + (size_t)rows * (width + 1)));
         buf[1] = image_buffer ? buf[0] : buf[0] + rows * buf_row;
@@ -78,28 +89,64 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     job.bilinear = r->params.lookup == VF_LOOKUP_BILINEAR;
     job.sample_shift = r->params.sample_bits ? 32 - r->params.sample_bits : 0;
     job.inter_shift = 16 - r->params.intermediate_bits;
-    job.plain = !job.bilinear && job.lookup.q15 && !job.lookup.lut_f && !job.sample_shift && !job.inter_shift;
+    job.step = 65536u / rays;
+    job.step_shift = 16;
+    while ((1u << job.step_shift) > job.step)
+        job.step_shift--;
+    /* the specialised loops: nearest lookup in a 16-bit table, no lut, full precision, one ray per voxel column */
+    job.plain = !job.bilinear && job.lookup.q15 && !job.lookup.lut_f && !job.sample_shift && !job.inter_shift &&
+                rays == 1;
     const vfi_runs_t *runs = &r->runs[f->k_axis];
-    slice_place_t place[2];
+    const bool partial = r->params.partial_slabs;
+    job.ni = l->ni;
+    job.nj = l->nj;
+    job.slab_q16 = f->slab_q16;
+    job.depth_from_tau = job.lookup.q15 && r->params.table_bits == 16 && !job.lookup.lut_f;
+    slice_place_t place[3];
 
     if (r->params.mode != VF_MODE_PREINT1) {
         const bool preclass = r->params.mode == VF_MODE_PRECLASS;
         for (uint32_t t = 0; t < l->nk; t++) {
-            place_slice(r, t, &place[0]);
+            slice_place_t *sl = &place[0];
+            place_slice(r, t, sl);
+            job.before = job.after = NULL;
+            if (partial && t > 0)
+                place_slice(r, t - 1, &place[1]), job.before = &place[1];
+            if (partial && t + 1 < l->nk)
+                place_slice(r, t + 1, &place[2]), job.after = &place[2];
+            /* with partial slabs, the pixels whose neighbours' samples are inside take a whole slab as always;
+             * the others, and all of the first and last slice, a length of their own (vfi_faces_order0) */
+            slice_place_t whole = *sl;
+            if (partial && (!job.before || !job.after)) {
+                whole.u_hi = whole.u_lo - 1, whole.v_hi = whole.v_lo - 1;
+            } else if (partial) {
+                for (int n = 1; n <= 2; n++) {
+                    whole.u_lo = MAX(whole.u_lo, place[n].u_lo), whole.u_hi = MIN(whole.u_hi, place[n].u_hi);
+                    whole.v_lo = MAX(whole.v_lo, place[n].v_lo), whole.v_hi = MIN(whole.v_hi, place[n].v_hi);
+                }
+            }
             uint32_t ks = f->k_flip ? l->nk - 1 - t : t;
             uint32_t kc = ks < l->nk - 1 ? ks : l->nk - 2; /* the cell slab that has slice ks as a face */
-            int32_t lo = place[0].v_lo > (int32_t)v0 ? place[0].v_lo : (int32_t)v0;
-            int32_t hi = place[0].v_hi < (int32_t)v1 - 1 ? place[0].v_hi : (int32_t)v1 - 1;
-            job.front = &place[0];
+            const int32_t lo = MAX(sl->v_lo, (int32_t)v0), hi = MIN(sl->v_hi, (int32_t)v1 - 1);
+            job.front = sl;
             job.t = t;
             for (int32_t v = lo; v <= hi; v++) {
-                const uint16_t *end, *p = vfi_runs_row(runs, kc, (uint32_t)(v - place[0].cv), &end);
-                run_merge_t m;
-                vfi_merge_init(&m, p, end, place[0].cu, NULL, NULL, 0);
+                uint32_t j;
+                job.row_data = slice_row(r, sl, job.step, v, &j, &job.front_fy);
                 job.next = next + (size_t)(v - (int32_t)v0) * (width + 1);
                 job.pixels = r->intermediate + (size_t)v * width * 4;
-                job.row_data = place[0].data + (size_t)(v - place[0].cv) * l->row;
-                vfi_row_order0(&job, &m, preclass);
+                const bool whole_row = v >= whole.v_lo && v <= whole.v_hi && whole.u_lo <= whole.u_hi;
+                if (whole_row) {
+                    const uint16_t *end, *p = vfi_runs_row(runs, kc, j, &end);
+                    run_merge_t m;
+                    vfi_merge_init(&m, job.step_shift, p, end, sl, NULL, NULL, NULL);
+                    job.clip_lo = whole.u_lo;
+                    job.clip_hi = whole.u_hi;
+                    vfi_row_order0(&job, &m, preclass);
+                }
+                if (partial)
+                    faces_around(&job, v, sl->u_lo, sl->u_hi, whole_row ? whole.u_lo : sl->u_hi + 1, whole.u_hi,
+                                 preclass);
             }
         }
         return VF_OK;
@@ -111,31 +158,40 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
         slice_place_t *back = &place[(t + 1) & 1];
         place_slice(r, t + 1, back);
         uint32_t kc = f->k_flip ? l->nk - 2 - t : t;
-        int32_t lo = front->v_lo > back->v_lo ? front->v_lo : back->v_lo;
-        int32_t hi = front->v_hi < back->v_hi ? front->v_hi : back->v_hi;
-        lo = lo > (int32_t)v0 ? lo : (int32_t)v0;
-        hi = hi < (int32_t)v1 - 1 ? hi : (int32_t)v1 - 1;
+        /* rows where both samples can be inside; with partial slabs also those only one slice covers, and the
+         * pixels around the ones both slices cover (a side face crossed between the slices) */
+        const int32_t both_lo = MAX(front->v_lo, back->v_lo), both_hi = MIN(front->v_hi, back->v_hi);
+        const int32_t u_lo = MAX(front->u_lo, back->u_lo), u_hi = MIN(front->u_hi, back->u_hi);
+        const int32_t lo = MAX(partial ? MIN(front->v_lo, back->v_lo) : both_lo, (int32_t)v0);
+        const int32_t hi = MIN(partial ? MAX(front->v_hi, back->v_hi) : both_hi, (int32_t)v1 - 1);
         job.front = front;
         job.back = back;
         job.t = t;
         job.front_shift = image_buffer ? 0 : front->cu;
         job.back_shift = image_buffer ? 0 : back->cu;
         for (int32_t v = lo; v <= hi; v++) {
-            const uint16_t *end_f, *p_f = vfi_runs_row(runs, kc, (uint32_t)(v - front->cv), &end_f);
-            const uint16_t *end_b, *p_b = vfi_runs_row(runs, kc, (uint32_t)(v - back->cv), &end_b);
-            run_merge_t m;
-            vfi_merge_init(&m, p_f, end_f, front->cu, p_b, end_b, back->cu);
             const size_t band_row = (size_t)(v - (int32_t)v0);
+            job.next = next + band_row * (width + 1);
+            job.pixels = r->intermediate + (size_t)v * width * 4;
+            const bool whole_row = v >= both_lo && v <= both_hi && u_lo <= u_hi;
+            if (partial)
+                faces_around(&job, v, MIN(front->u_lo, back->u_lo), MAX(front->u_hi, back->u_hi),
+                             whole_row ? u_lo : MAX(front->u_hi, back->u_hi) + 1, u_hi, false);
+            if (!whole_row)
+                continue;
+            uint32_t j_f, j_b;
+            job.row_data = slice_row(r, front, job.step, v, &j_f, &job.front_fy);
+            job.back_row_data = slice_row(r, back, job.step, v, &j_b, &job.back_fy);
+            const uint16_t *end_f, *p_f = vfi_runs_row(runs, kc, j_f, &end_f);
+            const uint16_t *end_b, *p_b = vfi_runs_row(runs, kc, j_b, &end_b);
+            run_merge_t m;
+            vfi_merge_init(&m, job.step_shift, p_f, end_f, front, p_b, end_b, back);
             row_visits_t *last = &visits[((t + 1) & 1) * rows + band_row], *now = &visits[(t & 1) * rows + band_row];
             now->slab = t;
             job.last = t > 0 && last->slab == t - 1 ? last : NULL;
             job.visits = now;
-            job.next = next + band_row * (width + 1);
-            job.pixels = r->intermediate + (size_t)v * width * 4;
             job.front_buf = buf[image_buffer ? 0 : t & 1] + band_row * buf_row + buf_first;
             job.back_buf = buf[image_buffer ? 0 : (t + 1) & 1] + band_row * buf_row + buf_first;
-            job.row_data = front->data + (size_t)(v - front->cv) * l->row;
-            job.back_row_data = back->data + (size_t)(v - back->cv) * l->row;
             vfi_row_preint1(&job, &m);
         }
     }
@@ -146,18 +202,53 @@ static void place_slice(const vf_renderer_t *r, uint32_t t, slice_place_t *p)
 {
     const vf_factor_t *f = &r->factor;
     const vfi_layout_t *l = &r->layout[f->k_axis];
-    int32_t ou = vf_factor_offset_u(f, t), ov = vf_factor_offset_v(f, t); /* >= 0, Q16.16 */
-    p->cu = (ou + 0xFFFF) >> 16;
-    p->cv = (ov + 0xFFFF) >> 16;
-    p->fx = (uint32_t)(p->cu * 65536 - ou);
-    p->fy = (uint32_t)(p->cv * 65536 - ov);
-    /* inside when 0 <= i and i + fraction <= n - 1 */
+    const int32_t step = (int32_t)(65536u / r->params.rays);
+    p->ou = vf_factor_offset_u(f, t); /* >= 0, Q16.16 */
+    p->ov = vf_factor_offset_v(f, t);
+    /* inside when 0 <= u / R - ou <= n - 1: from ceil(ou / step) to floor((ou + (n - 1) 2^16) / step) */
+    p->cu = (p->ou + step - 1) / step;
+    p->cv = (p->ov + step - 1) / step;
+    p->fx = (uint32_t)(p->cu * step - p->ou);
+    p->fy = (uint32_t)(p->cv * step - p->ov);
     p->u_lo = p->cu;
-    p->u_hi = p->cu + (int32_t)l->ni - 1 - (p->fx != 0);
+    p->u_hi = (p->ou + (int32_t)(l->ni - 1) * 65536) / step;
     p->v_lo = p->cv;
-    p->v_hi = p->cv + (int32_t)l->nj - 1 - (p->fy != 0);
+    p->v_hi = (p->ov + (int32_t)(l->nj - 1) * 65536) / step;
+    /* with R > 1 a slice can reach up to R - 1 pixels past the image, which ends at the last whole voxel
+     * (vf_factor_rays): those points have no pixel (docs/algorithm.md, section 3) */
+    p->u_hi = MIN(p->u_hi, (int32_t)f->int_w - 1);
+    p->v_hi = MIN(p->v_hi, (int32_t)f->int_h - 1);
     uint32_t ks = f->k_flip ? l->nk - 1 - t : t;
     p->data = r->slices[f->k_axis] + (size_t)ks * l->slice;
+}
+
+/* Partial slabs in row v: pixels [lo, hi] but [inner_lo, inner_hi] (empty when inner_lo > inner_hi), which the
+ * whole-slab rows take. */
+static void faces_around(const row_job_t *job, int32_t v, int32_t lo, int32_t hi, int32_t inner_lo, int32_t inner_hi,
+                         bool preclass)
+{
+    const bool preint = job->back != NULL;
+    if (inner_lo > inner_hi)
+        inner_lo = hi + 1, inner_hi = hi;
+    const int32_t spans[2][2] = {{lo, MIN(inner_lo - 1, hi)}, {MAX(inner_hi + 1, lo), hi}};
+    for (int n = 0; n < 2; n++) {
+        if (spans[n][0] > spans[n][1])
+            continue;
+        if (preint)
+            vfi_faces_preint1(job, v, (uint32_t)spans[n][0], (uint32_t)spans[n][1] + 1);
+        else
+            vfi_faces_order0(job, v, (uint32_t)spans[n][0], (uint32_t)spans[n][1] + 1, preclass);
+    }
+}
+
+/* The slice row that intermediate row v (inside the slice) samples, its index j and fraction fy to the next. */
+static inline const uint8_t *slice_row(const vf_renderer_t *r, const slice_place_t *sl, uint32_t step, int32_t v,
+                                uint32_t *j, uint32_t *fy)
+{
+    uint32_t y = (uint32_t)v * step - (uint32_t)sl->ov;
+    *j = y >> 16;
+    *fy = y & 0xFFFFu;
+    return sl->data + (size_t)*j * r->layout[r->factor.k_axis].row;
 }
 
 static unsigned char *align_up(unsigned char *p)

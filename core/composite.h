@@ -11,19 +11,25 @@
 
 #include "segment.h"
 
-/* Where a standard slice lands in the intermediate image. */
+/* Where a standard slice lands in the intermediate image. With R rays per voxel, pixel u samples the slice at column
+ * x = u / R - ou, in Q16.16 u * step - ou with step = 2^16 / R (exact: the offsets are on the 2^-16 grid). */
 typedef struct slice_place {
     const uint8_t *data;        /* the slice in the standard-order copy */
-    int32_t cu, cv;             /* pixel u = cu + i samples column i at fraction fx (likewise v, rows) */
-    uint32_t fx, fy;            /* Q0.16: the exact fractions (the offsets are on the 2^-16 grid) */
-    int32_t u_lo, u_hi;         /* pixels whose sample is inside the slice, inclusive */
+    int32_t ou, ov;             /* the slice's offset, Q16.16 voxels */
+    int32_t cu, cv;             /* the first pixel (row) whose sample is inside: its column (row) 0 */
+    uint32_t fx, fy;            /* Q0.16: the fractions at cu, cv; with R = 1 at every pixel (row) */
+    int32_t u_lo, u_hi;         /* pixels whose sample is inside the slice, inclusive (u_lo = cu) */
     int32_t v_lo, v_hi;
 } slice_place_t;
 
-/* A row's visible runs as intervals of pixels: the run list of one cell row (runs.h), from pixel pos on. */
+/* A row's visible runs as intervals of pixels: the run list of one cell row (runs.h) of a slice at offset ou. Cells
+ * [c0, c1) hold the samples of pixels [px(c0), px(c1)), px(c) = ceil((c 2^16 + ou) / step); with one ray per voxel
+ * that is c + cu, and the stream counts in pixels (shift 0). */
 typedef struct run_stream {
     const uint16_t *p, *end;
-    int32_t pos;                /* pixel of the next cell */
+    int32_t pos;                /* the next cell, or (one ray) its pixel */
+    int32_t ou_up;              /* ou + step - 1 */
+    uint32_t shift;             /* step = 2^shift; 0 for one ray per voxel */
 } run_stream_t;
 
 /* The union of a front and a back run stream (order 0: the front stream alone), as ascending disjoint
@@ -53,7 +59,16 @@ typedef struct row_job {
     const slice_place_t *front, *back; /* back is NULL in the order-0 modes */
     const uint8_t *row_data;           /* the front (order 0: the) slice's row under this intermediate row */
     const uint8_t *back_row_data;
+    uint32_t front_fy, back_fy;        /* their fractions to the next slice row, Q0.16 */
     uint32_t row;                      /* bytes per slice row */
+    uint32_t step, step_shift;         /* 2^16 / rays = 2^step_shift: a pixel's width in Q16.16 voxels */
+    uint32_t ni, nj;                   /* slice size, voxels */
+    int32_t clip_lo, clip_hi;          /* order 0: the pixels of the row to composite here, inclusive */
+    /* partial slabs (composite_partial.c) */
+    const slice_place_t *before, *after; /* order 0: slices t - 1 and t + 1, NULL beyond the first and last */
+    uint32_t slab_q16;                 /* the view's slab length */
+    bool depth_from_tau;               /* shorten with the entries' optical depths from the classification
+                                        * (16-bit tables), not from the segment's opacity */
     uint32_t t;                        /* standard slice (order 0) or slab (preint1) */
     const vfi_classify_t *cls;
     vfi_lookup_ctx_t lookup;
@@ -75,6 +90,16 @@ typedef struct row_job {
 void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass);
 void vfi_row_preint1(const row_job_t *job, run_merge_t *m);
 
+/* Partial slabs (docs/algorithm.md, section 4c), composite_partial.c: row v's pixels [x, y) that a slab crosses
+ * through a side face (preint1), or whose slice has a neighbour whose sample is outside (order 0). */
+void vfi_faces_preint1(const row_job_t *job, int32_t v, uint32_t x, uint32_t y);
+void vfi_faces_order0(const row_job_t *job, int32_t v, uint32_t x, uint32_t y, bool preclass);
+
+/* Shared with composite_partial.c: a slab's and a slice sample's entry (any lookup, format, correction). */
+void vfi_segment_preint1(const row_job_t *job, uint32_t pos_f, uint32_t pos_b, uint32_t seg[4]);
+void vfi_segment_order0(const row_job_t *job, const uint8_t *p, uint32_t fx, uint32_t fy, bool preclass,
+                        uint32_t seg[4]);
+
 /* The bilinear sample between p (column i of a slice row) and q (the same column of the next row) with fractions
  * fx, fy (Q0.16), exactly, in Q8.32: lerps as a + (b - a) f, three multiplications. vfi_sample_at: q = p + row. */
 static inline uint64_t vfi_sample_rows(const uint8_t *p, const uint8_t *q, uint32_t fx, uint32_t fy)
@@ -89,14 +114,27 @@ static inline uint64_t vfi_sample_at(const uint8_t *p, uint32_t row, uint32_t fx
     return vfi_sample_rows(p, p + row, fx, fy);
 }
 
-/* Where a sample of slice sl at p goes in the table: its nearest entry, or (bilinear) its position in Q.16; for
- * precision studies the sample is first rounded to fewer fraction bits. */
-static inline uint32_t vfi_table_position(const row_job_t *job, const uint8_t *p, const slice_place_t *sl)
+/* The column of slice sl that pixel u samples, and its fraction fx (Q0.16). */
+static inline uint32_t vfi_column(const slice_place_t *sl, uint32_t step, uint32_t u, uint32_t *fx)
 {
-    uint64_t s = vfi_sample_at(p, job->row, sl->fx, sl->fy);
+    uint32_t x = u * step - (uint32_t)sl->ou; /* u * step < 2^32: u < 2^16 */
+    *fx = x & 0xFFFFu;
+    return x >> 16;
+}
+
+/* Where a sample s (Q8.32) goes in the table: its nearest entry, or (bilinear) its position in Q.16; for
+ * precision studies the sample is first rounded to fewer fraction bits. */
+static inline uint32_t vfi_position_of(const row_job_t *job, uint64_t s)
+{
     if (job->sample_shift)
         s = ((s + (UINT64_C(1) << (job->sample_shift - 1))) >> job->sample_shift) << job->sample_shift;
     return job->bilinear ? vfi_position_of_sample(job->cls, s) : vfi_entry_of_sample(job->cls, s);
+}
+
+/* The same for the sample at p with fractions fx, fy. */
+static inline uint32_t vfi_table_position(const row_job_t *job, const uint8_t *p, uint32_t fx, uint32_t fy)
+{
+    return vfi_position_of(job, vfi_sample_at(p, job->row, fx, fy));
 }
 
 /* Composite a segment; for precision studies keep the accumulators on a coarser grid. True when the pixel became
@@ -136,24 +174,39 @@ static inline void vfi_stream_next(run_stream_t *s, int32_t *a, int32_t *b)
         *a = *b = VFI_RUN_END;
         return;
     }
-    *a = s->pos + s->p[0];
-    *b = *a + s->p[1];
-    s->pos = *b;
+    const int32_t from = s->pos + s->p[0], to = from + s->p[1];
+    s->pos = to;
     s->p += 2;
+    if (s->shift == 0) {
+        *a = from, *b = to;
+    } else { /* below 2^31: cells and offsets are below 2^14 voxels */
+        *a = (int32_t)((uint32_t)(from * 65536 + s->ou_up) >> s->shift);
+        *b = (int32_t)((uint32_t)(to * 65536 + s->ou_up) >> s->shift);
+    }
 }
 
-/* Start a merge of one stream (p1 NULL) or two. */
-static inline void vfi_merge_init(run_merge_t *m, const uint16_t *p0, const uint16_t *e0, int32_t pos0,
-                                  const uint16_t *p1, const uint16_t *e1, int32_t pos1)
+static inline void vfi_stream_init(run_stream_t *s, const uint16_t *p, const uint16_t *end, const slice_place_t *sl,
+                                   uint32_t step_shift)
 {
-    m->s[0].p = p0, m->s[0].end = e0, m->s[0].pos = pos0;
-    m->s[1].p = p1, m->s[1].end = p1 ? e1 : p1, m->s[1].pos = pos1;
+    s->p = p, s->end = end;
+    s->ou_up = sl->ou + (int32_t)(1u << step_shift) - 1;
+    s->shift = step_shift == 16 ? 0 : step_shift;
+    s->pos = step_shift == 16 ? sl->cu : 0;
+}
+
+/* Start a merge of the runs of slice sl0's cell row (p0, e0) and, unless p1 is NULL, slice sl1's. */
+static inline void vfi_merge_init(run_merge_t *m, uint32_t step_shift, const uint16_t *p0, const uint16_t *e0,
+                                  const slice_place_t *sl0, const uint16_t *p1, const uint16_t *e1,
+                                  const slice_place_t *sl1)
+{
+    vfi_stream_init(&m->s[0], p0, e0, sl0, step_shift);
+    vfi_stream_init(&m->s[1], p1, p1 ? e1 : p1, p1 ? sl1 : sl0, step_shift);
     vfi_stream_next(&m->s[0], &m->a0, &m->b0);
     vfi_stream_next(&m->s[1], &m->a1, &m->b1);
 }
 
 /* The next interval of the union, with overlapping and touching intervals joined; false when none is left. */
-static inline bool vfi_merge_next(run_merge_t *m, int32_t *a, int32_t *b)
+static VF_ALWAYS_INLINE bool vfi_merge_next(run_merge_t *m, int32_t *a, int32_t *b)
 {
     int32_t lo, hi;
     if (m->a0 <= m->a1) {

@@ -17,7 +17,7 @@
 #define MAX(a, b) ((a) > (b) ? (a) : (b))
 
 /* The 2D entry of a slab from its front and back table positions (any lookup, table format, correction). */
-static void segment_preint1(const row_job_t *job, uint32_t pos_f, uint32_t pos_b, uint32_t seg[4])
+void vfi_segment_preint1(const row_job_t *job, uint32_t pos_f, uint32_t pos_b, uint32_t seg[4])
 {
     const vfi_lookup_ctx_t *c = &job->lookup;
     const size_t n = c->n;
@@ -56,7 +56,7 @@ typedef struct row_arrays {
 static VF_ALWAYS_INLINE void span_plain(const row_job_t *job, const row_arrays_t *ra, uint32_t x, uint32_t y,
                                         bool buffered, bool n256)
 {
-    const uint32_t n = n256 ? 256 : job->lookup.n, cu = ra->cu, fx = job->back->fx, fy = job->back->fy;
+    const uint32_t n = n256 ? 256 : job->lookup.n, cu = ra->cu, fx = job->back->fx, fy = job->back_fy;
     const uint8_t *top = ra->top, *bottom = ra->bottom;
     const uint32_t *front_buf = ra->front_buf;
     uint32_t *back_buf = ra->back_buf;
@@ -69,7 +69,7 @@ static VF_ALWAYS_INLINE void span_plain(const row_job_t *job, const row_arrays_t
             row_f = front_buf[c];
         } else {
             const slice_place_t *fr = job->front;
-            uint64_t s = vfi_sample_at(job->row_data + (u - (uint32_t)fr->cu), job->row, fr->fx, fr->fy);
+            uint64_t s = vfi_sample_at(job->row_data + (u - (uint32_t)fr->cu), job->row, fr->fx, job->front_fy);
             row_f = n * vfi_entry_of_sample_n(n, s);
         }
         const uint32_t pos_b = vfi_entry_of_sample_n(n, vfi_sample_rows(top + c, bottom + c, fx, fy));
@@ -80,19 +80,25 @@ static VF_ALWAYS_INLINE void span_plain(const row_job_t *job, const row_arrays_t
     }
 }
 
-/* Any lookup, table format, correction or precision study: the open pixels of [x, y). Nearest positions are kept
- * times N in the buffer (the front entry's row in the 2D table), bilinear ones as they are. */
+/* Any lookup, table format, correction, precision study or number of rays: the open pixels of [x, y). Nearest
+ * positions are kept times N in the buffer (the front entry's row in the 2D table), bilinear ones as they are. */
 static void span_general(const row_job_t *job, uint32_t x, uint32_t y, bool buffered)
 {
     const slice_place_t *fr = job->front, *bk = job->back;
     const uint32_t n = job->lookup.n, scale = job->bilinear ? 1 : n;
     for (uint32_t u = vfi_next_open(job->next, x); u < y; u = vfi_next_open(job->next, u + 1)) {
-        uint32_t pos_f = buffered ? job->front_buf[u - (uint32_t)job->front_shift]
-                                  : scale * vfi_table_position(job, job->row_data + (u - (uint32_t)fr->cu), fr);
-        uint32_t pos_b = vfi_table_position(job, job->back_row_data + (u - (uint32_t)bk->cu), bk);
+        uint32_t fx, pos_f;
+        if (buffered) {
+            pos_f = job->front_buf[u - (uint32_t)job->front_shift];
+        } else {
+            const uint32_t i = vfi_column(fr, job->step, u, &fx);
+            pos_f = scale * vfi_table_position(job, job->row_data + i, fx, job->front_fy);
+        }
+        const uint32_t i = vfi_column(bk, job->step, u, &fx);
+        uint32_t pos_b = vfi_table_position(job, job->back_row_data + i, fx, job->back_fy);
         job->back_buf[u - (uint32_t)job->back_shift] = pos_b * scale;
         uint32_t seg[4];
-        segment_preint1(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg);
+        vfi_segment_preint1(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg);
         if (vfi_composite_segment(job, job->pixels + (size_t)u * 4, seg))
             job->next[u] = (uint16_t)(u + 1);
     }

@@ -80,6 +80,7 @@ vf_status_t vf_factor(vf_factor_t *f, const vf_volume_t *vol, const vf_view_t *v
     int32_t ou_last = vf_factor_offset_u(f, (uint32_t)last), ov_last = vf_factor_offset_v(f, (uint32_t)last);
     ou_max = ou_last > ou_max ? ou_last : ou_max;
     ov_max = ov_last > ov_max ? ov_last : ov_max;
+    f->rays = 1;
     f->int_w = (uint32_t)(ou_max >> 16) + f->ni;
     f->int_h = (uint32_t)(ov_max >> 16) + f->nj;
 
@@ -136,6 +137,29 @@ vf_status_t vf_factor(vf_factor_t *f, const vf_volume_t *vol, const vf_view_t *v
     int64_t vc = (((int64_t)f->nj - 1) << 31) + f->tj_q32 + f->sj_q32 * last / 2;
     f->u0_q32 = uc - du[0] * ((int64_t)out_w - 1) / 2 - du[1] * ((int64_t)out_h - 1) / 2;
     f->v0_q32 = vc - dv[0] * ((int64_t)out_w - 1) / 2 - dv[1] * ((int64_t)out_h - 1) / 2;
+    return VF_OK;
+}
+
+vf_status_t vf_factor_rays(vf_factor_t *f, uint32_t rays)
+{
+    if (!f)
+        return VF_ERR_NULL;
+    if (f->rays != 1 || (rays != 1 && rays != 2 && rays != 4 && rays != 8 && rays != 16) || rays > VF_MAX_RAYS)
+        return VF_ERR_ARG;
+    if ((uint64_t)rays * (f->int_w - 1) + 1 > VF_MAX_INTERMEDIATE ||
+        (uint64_t)rays * (f->int_h - 1) + 1 > VF_MAX_INTERMEDIATE)
+        return VF_ERR_INTERMEDIATE;
+    /* Pixel U is at u = U / rays: the image keeps the points 0..int_w - 1, and the warp's u scales by rays
+     * (exactly: an integer times Q32.32). */
+    f->rays = rays;
+    f->int_w = rays * (f->int_w - 1) + 1;
+    f->int_h = rays * (f->int_h - 1) + 1;
+    f->u0_q32 *= rays;
+    f->v0_q32 *= rays;
+    f->du_dx_q32 *= rays;
+    f->dv_dx_q32 *= rays;
+    f->du_dy_q32 *= rays;
+    f->dv_dy_q32 *= rays;
     return VF_OK;
 }
 

@@ -7,7 +7,7 @@
 
 static vf_status_t check_params(const vf_params_t *p);
 static vf_status_t check_volume(const vf_volume_t *v);
-static size_t intermediate_pixels(const uint32_t dims[3], uint32_t *max_w, uint32_t *max_ni);
+static size_t intermediate_pixels(const uint32_t dims[3], uint32_t rays, uint32_t *max_w, uint32_t *max_ni);
 static size_t table_value_bytes(const vf_params_t *p);
 static size_t table_entries(const vf_params_t *p);
 static size_t table_bytes(const vf_params_t *p);
@@ -24,6 +24,8 @@ void vf_params_default(vf_params_t *p)
     p->lookup = VF_LOOKUP_NEAREST;
     p->correction = VF_CORRECTION_REBUILD;
     p->buffer = VF_BUFFER_SLICE;
+    p->rays = 1;
+    p->partial_slabs = false;
     p->sample_bits = 0;
     p->intermediate_bits = 16;
     p->warp_bits = 16;
@@ -39,13 +41,15 @@ vf_status_t vf_renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, size
         s = check_volume(vol);
     if (s != VF_OK)
         return s;
+    uint32_t w, ni;
+    if (intermediate_pixels(vol->dims, p->rays, &w, &ni) == 0)
+        return VF_ERR_INTERMEDIATE;
     const uint32_t n = p->table_size;
     size_t total = VFI_ALIGN + vfi_arena_block(sizeof(vf_renderer_t));
     for (int a = 0; a < 3; a++)
         total += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
     total += vfi_classify_bytes(n) + table_bytes(p);
-    uint32_t w, ni;
-    total += vfi_arena_block(sizeof(uint16_t) * 4 * intermediate_pixels(vol->dims, &w, &ni));
+    total += vfi_arena_block(sizeof(uint16_t) * 4 * intermediate_pixels(vol->dims, p->rays, &w, &ni));
     *bytes = total;
     return VF_OK;
 }
@@ -83,7 +87,7 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
         r->lut_f = vfi_arena_alloc(arena, sizeof(uint16_t) * VFI_LUT_KNOTS);
         r->lut_g = vfi_arena_alloc(arena, sizeof(uint32_t) * VFI_LUT_KNOTS);
     }
-    r->intermediate_max = intermediate_pixels(vol->dims, &r->max_int_w, &r->max_ni);
+    r->intermediate_max = intermediate_pixels(vol->dims, p->rays, &r->max_int_w, &r->max_ni);
     r->intermediate = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * r->intermediate_max);
     if (s != VF_OK || !r->slices[0] || !r->slices[1] || !r->slices[2] || !r->table ||
         (lut && (!r->lut_f || !r->lut_g)) || !r->intermediate)
@@ -151,6 +155,8 @@ vf_status_t vf_render_begin(vf_renderer_t *r, const vf_view_t *view, uint32_t ou
     if (!r->have_window || !r->have_tf || !r->have_runs)
         return VF_ERR_STATE;
     vf_status_t s = vf_factor(&r->factor, &r->volume, view, out_w, out_h);
+    if (s == VF_OK)
+        s = vf_factor_rays(&r->factor, r->params.rays); /* fits: checked against the largest view at create */
     if (s != VF_OK)
         return s;
     update_tables(r);
@@ -220,12 +226,17 @@ static vf_status_t check_params(const vf_params_t *p)
     if ((unsigned)p->mode >= VF_MODE_COUNT || (unsigned)p->lookup >= VF_LOOKUP_COUNT ||
         (unsigned)p->correction >= VF_CORRECTION_COUNT || (unsigned)p->buffer >= VF_BUFFER_COUNT ||
         (p->table_bits != 8 && p->table_bits != 10 && p->table_bits != 12 && p->table_bits != 16) ||
+        (p->rays != 1 && p->rays != 2 && p->rays != 4 && p->rays != 8 && p->rays != 16) || p->rays > VF_MAX_RAYS ||
         (p->sample_bits != 0 && (p->sample_bits < 4 || p->sample_bits > 16)) ||
         (p->intermediate_bits != 8 && p->intermediate_bits != 12 && p->intermediate_bits != 16) ||
         p->warp_bits < 4 || p->warp_bits > 16)
         return VF_ERR_ARG;
     if (p->table_size < VF_MIN_TABLE || p->table_size > VF_MAX_TABLE)
         return VF_ERR_ARG;
+    /* the lut's Q1.15 knots leave too few bits of a nearly opaque slab's transmittance for a part of it
+     * (docs/algorithm.md, section 4c) */
+    if (p->partial_slabs && p->correction == VF_CORRECTION_LUT)
+        return VF_ERR_UNSUPPORTED;
     return VF_OK;
 }
 
@@ -273,8 +284,9 @@ static size_t table_bytes(const vf_params_t *p)
     return bytes;
 }
 
-/* The intermediate image is at most (n_i + n_k - 1) x (n_j + n_k - 1) for any view, as |shear| <= 1. */
-static size_t intermediate_pixels(const uint32_t dims[3], uint32_t *max_w, uint32_t *max_ni)
+/* The intermediate image is at most (n_i + n_k - 1) x (n_j + n_k - 1) voxels for any view, as |shear| <= 1, and with
+ * rays R per voxel R (n - 1) + 1 pixels a side (vf_factor_rays). 0 when a side would exceed VF_MAX_INTERMEDIATE. */
+static size_t intermediate_pixels(const uint32_t dims[3], uint32_t rays, uint32_t *max_w, uint32_t *max_ni)
 {
     size_t most = 0;
     *max_w = 0;
@@ -282,8 +294,10 @@ static size_t intermediate_pixels(const uint32_t dims[3], uint32_t *max_w, uint3
     for (int k = 0; k < 3; k++) {
         vfi_layout_t l;
         vfi_layout(dims, k, &l);
-        size_t w = l.ni + l.nk - 1, h = l.nj + l.nk - 1;
-        most = w * h > most ? w * h : most;
+        uint64_t w = (uint64_t)rays * (l.ni + l.nk - 2) + 1, h = (uint64_t)rays * (l.nj + l.nk - 2) + 1;
+        if (w > VF_MAX_INTERMEDIATE || h > VF_MAX_INTERMEDIATE)
+            return 0;
+        most = w * h > most ? (size_t)(w * h) : most;
         *max_w = (uint32_t)w > *max_w ? (uint32_t)w : *max_w;
         *max_ni = l.ni > *max_ni ? l.ni : *max_ni;
     }

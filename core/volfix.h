@@ -42,6 +42,7 @@ typedef enum vf_status {
     VF_ERR_STATE,       /* called out of order (for example a frame before a window and transfer function) */
     VF_ERR_IMAGE,       /* output image: zero size, stride too small, unknown format, size differs from begin */
     VF_ERR_UNSUPPORTED, /* a valid request this build does not implement */
+    VF_ERR_INTERMEDIATE, /* with this many rays the intermediate image would exceed VF_MAX_INTERMEDIATE a side */
     VF_STATUS_COUNT
 } vf_status_t;
 
@@ -128,6 +129,10 @@ typedef struct vf_params {
     vf_lookup_t lookup;         /* nearest */
     vf_correction_t correction; /* rebuild */
     vf_buffer_t buffer;         /* slice */
+    uint32_t rays;              /* 1, 2, 4, 8 or 16 (1): rays per voxel column along each of u and v, an
+                                 * intermediate image of rays x rays pixels per voxel (docs/algorithm.md, 4b) */
+    bool partial_slabs;         /* false: where a ray crosses a side face between two slices, a slab counts
+                                 * whole or not at all (section 4); true: its part inside the box (4c) */
     uint16_t background[3];     /* unorm16 RGB behind the volume (black) */
     /* Precision of the core's own arithmetic, for studies of how many bits each stage needs (docs/algorithm.md,
      * section 6). The defaults are the full precision; the double reference ignores these. */
@@ -179,10 +184,11 @@ typedef struct vf_factor {
     uint32_t ni, nj, nk;            /* volume dimensions along i, j, k */
     int64_t si_q32, sj_q32;         /* shear: intermediate pixels per slice, Q32.32 */
     int64_t ti_q32, tj_q32;         /* translation of slice 0, Q32.32 */
-    uint32_t int_w, int_h;          /* intermediate image size */
+    uint32_t rays;                  /* intermediate pixels per voxel along u and v (1 from vf_factor) */
+    uint32_t int_w, int_h;          /* intermediate image size, pixels */
     uint32_t slab_q16;              /* distance between slices along a ray, units of d_ref, Q16.16 */
     uint32_t out_w, out_h;          /* final image size */
-    int64_t u0_q32, v0_q32;         /* intermediate point seen by final pixel (0, 0), Q32.32 */
+    int64_t u0_q32, v0_q32;         /* intermediate pixel seen by final pixel (0, 0), Q32.32 */
     int64_t du_dx_q32, dv_dx_q32;   /* change per final pixel to the right */
     int64_t du_dy_q32, dv_dy_q32;   /* change per final pixel down */
 } vf_factor_t;
@@ -190,7 +196,14 @@ typedef struct vf_factor {
 vf_status_t vf_factor(vf_factor_t *factor, const vf_volume_t *volume, const vf_view_t *view, uint32_t out_w,
                       uint32_t out_h);
 
-/* Offset of slice k in the intermediate image, Q16.16 (snapped to the 2^-16 grid, docs/algorithm.md). */
+/* The same factorisation with rays x rays intermediate pixels per voxel (a factorisation of one ray per voxel
+ * column, rays 1, 2, 4, 8 or 16): int_w = rays (int_w - 1) + 1, likewise int_h, and the warp map in those
+ * pixels. The slice offsets stay in voxels. VF_ERR_ARG for other values, VF_ERR_INTERMEDIATE when the image
+ * would be wider or taller than VF_MAX_INTERMEDIATE. */
+vf_status_t vf_factor_rays(vf_factor_t *factor, uint32_t rays);
+
+/* Offset of slice k in the intermediate image in voxels, Q16.16 (snapped to the 2^-16 grid, docs/algorithm.md):
+ * with rays R, pixel U samples slice k at U / R - offset. */
 int32_t vf_factor_offset_u(const vf_factor_t *factor, uint32_t k);
 int32_t vf_factor_offset_v(const vf_factor_t *factor, uint32_t k);
 

@@ -13,10 +13,8 @@ static const char usage_head[] =
     "  --hash               print the frame's FNV-1a 64-bit hash over its pixel bytes (port/image.h), to\n"
     "                       compare frames across machines; with or without -o\n"
     "  --reference          use the double-precision reference renderer\n"
-    "  --partial-slabs      with --reference: composite the part of a slab inside the box where a ray crosses\n"
-    "                       a side face between two slices (docs/algorithm.md section 4c; not in the core yet)\n"
     "  --truth              use the ground-truth ray caster (trilinear, continuous transfer function, exact\n"
-    "                       integration; --mode, --rays and the table options do not apply)\n";
+    "                       integration; --mode, --rays, --partial-slabs and the table options do not apply)\n";
 
 int sim_cmd_render(int argc, char **argv)
 {
@@ -37,7 +35,7 @@ int sim_cmd_render(int argc, char **argv)
         return 2;
     }
     if (o.truth)
-        scene.rays = 1; /* the truth has no intermediate image: --rays does not apply */
+        scene.params.rays = 1; /* the truth has no intermediate image: --rays does not apply */
     vf_image_t img;
     status = o.reference ? sim_render_reference(&scene, NULL, &img, err, sizeof err)
              : o.truth   ? sim_render_truth(&scene, &img, err, sizeof err)

@@ -26,8 +26,9 @@ const char sim_scene_help[] =
     "                       opacity and colour corrected through a lookup on opacity)\n"
     "  --buffer B           slice (default: two slice-sized buffers) or image (one image-row buffer)\n"
     "  --rays N             rays per voxel column along each axis: 1 (default), 2, 4, 8 or 16 (an intermediate\n"
-    "                       image of N x N pixels per voxel); above 1 only the reference has it (render\n"
-    "                       --reference); the truth ignores it\n"
+    "                       image of N x N pixels per voxel, N^2 times the memory); the truth ignores it\n"
+    "  --partial-slabs      where a ray crosses a side face of the volume between two slices, composite the part\n"
+    "                       of the slab inside it (default: the whole slab or nothing)\n"
     "  --threads N          compositing and warping threads (default 1)\n"
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]\n"
     "                       for raw voxel files (--spacing also overrides a file's own)\n"
@@ -81,7 +82,6 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
     o->threads = 1;
     o->frames = 90;
     o->tf_scale = 1;
-    o->rays = 1;
     char err[VFP_ERR_LEN];
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -145,7 +145,7 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
             double n;
             if (!v || parse_doubles(v, &n, 1, 1) < 0 || !(n == 1 || n == 2 || n == 4 || n == 8 || n == 16))
                 return bad(a, v, "1, 2, 4, 8 or 16");
-            o->rays = (int)n;
+            o->params.rays = (uint32_t)n;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--view") == 0) {
             double d[3] = {0, 0, 0};
             if (!v || parse_doubles(v, d, 2, 3) < 0)
@@ -213,8 +213,8 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
         } else if ((groups & SIM_OPT_REF) && strcmp(a, "--reference") == 0) {
             o->reference = 1;
             takes = 0;
-        } else if ((groups & SIM_OPT_REF) && strcmp(a, "--partial-slabs") == 0) {
-            o->partial_slabs = 1;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--partial-slabs") == 0) {
+            o->params.partial_slabs = true;
             takes = 0;
         } else if ((groups & SIM_OPT_TRUTH) && strcmp(a, "--truth") == 0) {
             o->truth = 1;
@@ -263,15 +263,9 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
         fprintf(stderr, "volfix-sim: give --reference or --truth, not both\n");
         return 2;
     }
-    if (o->partial_slabs && !o->reference) {
-        fprintf(stderr, "volfix-sim: --partial-slabs is an option of the reference: give --reference too\n");
-        return 2;
-    }
-    /* the core has one ray per voxel column only (vf_params_t has no field for more yet); the truth has no
-     * intermediate image, so render --truth ignores the option (compare --against truth still renders the core) */
-    if (o->rays != 1 && !o->reference && !(o->truth && (groups & SIM_OPT_TRUTH))) {
-        fprintf(stderr, "volfix-sim: --rays %d: the core has 1 ray per voxel column only; more are rendered by the "
-                        "reference (volfix-sim render --reference)\n", o->rays);
+    if (o->params.partial_slabs && o->params.correction == VF_CORRECTION_LUT && !o->reference) {
+        fprintf(stderr, "volfix-sim: --partial-slabs goes with --correction rebuild: the core does not shorten "
+                        "lut-corrected slabs (docs/algorithm.md, section 4c)\n");
         return 2;
     }
     if (o->preset && o->tf_file) {

@@ -19,8 +19,6 @@ typedef struct sim_opts {
     vf_format_t format;        /* --format */
     int threads;               /* --threads */
     int reference;             /* --reference: render with the double reference */
-    int partial_slabs;         /* --partial-slabs: the reference's partial slabs at the side faces (ref.h) */
-    int rays;                  /* --rays N: rays per voxel column along each axis, 1 (default), 2, 4, 8, 16 */
     int truth;                 /* --truth (render), --against truth (compare): the ground-truth ray caster */
     int have_pixel;            /* --pixel X,Y given */
     double pixel[2];           /* --pixel X,Y: a final-image position */

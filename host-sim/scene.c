@@ -44,8 +44,6 @@ int sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen
     s->height = o->height;
     s->format = o->format;
     s->threads = o->threads;
-    s->partial_slabs = o->partial_slabs;
-    s->rays = o->rays;
     return 0;
 }
 
@@ -68,10 +66,6 @@ void sim_image_free(vf_image_t *img)
 int sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, char *err, size_t errlen)
 {
     vfp_render_t r;
-    if (s->rays > 1) { /* until vf_params_t has a field for it (scene.h) */
-        snprintf(err, errlen, "rays %d: the core renders 1 ray per voxel column only", s->rays);
-        return 2;
-    }
     if (sim_image_alloc(img, s->width, s->height, s->format)) {
         snprintf(err, errlen, "out of memory for a %ux%u image", s->width, s->height);
         return 2;
@@ -165,8 +159,8 @@ int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, v
     params.lookup = s->params.lookup == VF_LOOKUP_BILINEAR ? REF_LOOKUP_BILINEAR : REF_LOOKUP_NEAREST;
     params.table_bits = (int)s->params.table_bits;
     params.correction = s->params.correction == VF_CORRECTION_LUT ? REF_CORRECTION_LUT : REF_CORRECTION_REBUILD;
-    params.partial_slabs = s->partial_slabs;
-    params.rays = s->rays;
+    params.partial_slabs = s->params.partial_slabs;
+    params.rays = (int)s->params.rays;
     int32_t *offsets = NULL;
     if (core_factor) {
         offsets = malloc(sizeof(int32_t) * 2 * core_factor->nk);
@@ -239,8 +233,8 @@ void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)
         snprintf(options, sizeof options, " (table %u x %u bits, %s, %s, %s buffer)", p->table_size, p->table_bits,
                  vf_lookup_name(p->lookup), vf_correction_name(p->correction), vf_buffer_name(p->buffer));
     char rays[32] = "";
-    if (s->rays > 1)
-        snprintf(rays, sizeof rays, " rays %d", s->rays);
+    if (s->params.rays > 1)
+        snprintf(rays, sizeof rays, " rays %u", s->params.rays);
     snprintf(text, len, "%s %s%s%s %ux%u view %s zoom %g %s window %d,%d", base ? base + 1 : s->vol.name,
              vf_mode_name(p->mode), options, rays, s->width, s->height, view, s->view.zoom_q16 / 65536.0, s->tf.name,
              s->window.lo, s->window.hi);

@@ -23,11 +23,6 @@ typedef struct sim_scene {
     uint32_t width, height;
     vf_format_t format;
     int threads;
-    int partial_slabs;  /* the reference only: partial slabs at the side faces (ref.h, ref_params_t) */
-    /* Rays per voxel column along each axis, R in {1, 2, 4, 8, 16} (docs/algorithm.md section 4b; 0 counts as 1).
-     * The reference renders any R. The core does not have it yet: vf_params_t has no field, so sim_render_core
-     * refuses R > 1; when the core gets one, sim_render_core copies this field into it. */
-    int rays;
 } sim_scene_t;
 
 /* Load the volume and transfer function the options name. Returns 0, or 2 with err. */

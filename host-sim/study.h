@@ -56,7 +56,7 @@ typedef struct study_reference {
  * intermediate pixels warped, against the truth; per mode (point, preint1, preclass, as ref_mode_t) and side-face
  * rule ([0] section 4's whole slabs, [1] partial slabs) the double reference's intermediate image against those
  * exact integrals (the integration alone) and its final image against the truth. PSNR in dB. The intermediate
- * image has the scene's rays per voxel column (sim_scene_t.rays; the study's scenes have 1). */
+ * image has the scene's rays per voxel column (sim_scene_t.params.rays; the study's scenes have 1). */
 #define STUDY_FLOOR_MODES 3
 typedef struct study_floor {
     int done, scene;

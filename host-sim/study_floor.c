@@ -55,7 +55,7 @@ int study_floor(study_t *st, int scene, study_floor_t *out, char *err, size_t er
     truth_tf_t *tf = malloc(sizeof *tf);
     const truth_opts_t opts = TRUTH_OPTS_DEFAULT;
     const size_t pixels = (size_t)s->width * s->height;
-    const int N = (int)s->params.table_size, R = s->rays > 1 ? s->rays : 1;
+    const int N = (int)s->params.table_size, R = (int)s->params.rays;
     int status = 2, W = 0, H = 0;
     double *exact = NULL, *inter = NULL, *table = NULL, *rgb = malloc(sizeof(double) * 3 * pixels);
     uint8_t *bytes = malloc(3 * pixels);

@@ -1,7 +1,8 @@
 /*
  * test_options.c: every renderer option (docs/algorithm.md section 4b: mode point / preint1 / preclass, lookup
- * nearest / bilinear, table bits 16 / 8, correction rebuild / lut, buffer slice / image) composites exactly what
- * sections 4 and 4b say, pixel for pixel, whatever the run-length encoding, the skip links and the buffers skip.
+ * nearest / bilinear, table bits 16 / 8, correction rebuild / lut, buffer slice / image, rays 1 / 2 / 4) composites
+ * exactly what sections 4 and 4b say, pixel for pixel, whatever the run-length encoding, the skip links and the
+ * buffers skip.
  *
  * The reference here walks every intermediate pixel and every slice, skipping nothing but terminated pixels. It
  * takes the segment arithmetic (table fetch, 8-bit expansion, bilinear weights, lut correction, blend) from the
@@ -35,7 +36,8 @@ static uint8_t vox[MAXD * MAXD * MAXD];
 static _Alignas(16) unsigned char arena_buf[1 << 22];
 static _Alignas(16) unsigned char scratch[1 << 20];
 static unsigned char pixels[2][64 * 64 * 3];
-static uint16_t ref_img[(2 * MAXD) * (2 * MAXD) * 4];
+#define MAX_RAYS 4
+static uint16_t ref_img[(MAX_RAYS * 2 * MAXD) * (MAX_RAYS * 2 * MAXD) * 4];
 
 static void fill_random(const vf_volume_t *v)
 {
@@ -79,8 +81,8 @@ static uint32_t standard(const vf_volume_t *v, const vf_factor_t *f, uint32_t i,
     return ((const uint8_t *)v->voxels)[((size_t)p[2] * v->dims[1] + p[1]) * v->dims[0] + p[0]];
 }
 
-/* The sample of standard slice k at intermediate pixel (u, v): false when outside; else its exact value (Q8.32),
- * the four voxels and the fractions. */
+/* The sample of standard slice k at intermediate pixel (u, v), at slice position (u / R - ou_k, v / R - ov_k):
+ * false when outside; else its exact value (Q8.32), the four voxels and the fractions. */
 typedef struct sample {
     uint64_t s_q32;
     uint32_t vox[4]; /* (i0, j0), (i0 + 1, j0), (i0, j0 + 1), (i0 + 1, j0 + 1) */
@@ -89,7 +91,8 @@ typedef struct sample {
 
 static bool sample_at(const vf_volume_t *vol, const vf_factor_t *f, uint32_t u, uint32_t v, uint32_t k, sample_t *s)
 {
-    int64_t x = (int64_t)u * 65536 - vf_factor_offset_u(f, k), y = (int64_t)v * 65536 - vf_factor_offset_v(f, k);
+    const int64_t step = 65536 / f->rays;
+    int64_t x = (int64_t)u * step - vf_factor_offset_u(f, k), y = (int64_t)v * step - vf_factor_offset_v(f, k);
     if (x < 0 || y < 0 || x > (int64_t)(f->ni - 1) * 65536 || y > (int64_t)(f->nj - 1) * 65536)
         return false;
     uint32_t i0 = (uint32_t)(x >> 16), j0 = (uint32_t)(y >> 16);
@@ -188,8 +191,9 @@ static void reference(const vf_renderer_t *r, const vf_volume_t *vol)
 static const char *describe(const vf_params_t *p)
 {
     static char text[160];
-    snprintf(text, sizeof text, "%s, N %u, %s, %u bits, %s, buffer %s", vf_mode_name(p->mode), p->table_size,
-             vf_lookup_name(p->lookup), p->table_bits, vf_correction_name(p->correction), vf_buffer_name(p->buffer));
+    snprintf(text, sizeof text, "%s, N %u, %s, %u bits, %s, buffer %s, rays %u", vf_mode_name(p->mode),
+             p->table_size, vf_lookup_name(p->lookup), p->table_bits, vf_correction_name(p->correction),
+             vf_buffer_name(p->buffer), p->rays);
     return text;
 }
 
@@ -268,6 +272,7 @@ static void all_options(void)
         p.buffer = (combo / 24) % 2 ? VF_BUFFER_IMAGE : VF_BUFFER_SLICE;
         for (int t = 0; t < 6 && !check_failed; t++) {
             p.table_size = sizes[t % 4];
+            p.rays = 1u << (t % 3); /* 1, 2, 4 */
             one_scene(&p);
         }
         if (check_failed)
@@ -367,6 +372,47 @@ static void option_arguments(void)
     q.table_bits = 8;
     CHECK_EQ(vf_renderer_bytes(&q, &vol, &b8), VF_OK);
     CHECK(b16 - b8 >= (size_t)256 * 256 * 4 - 16);
+    /* rays: 1, 2, 4, 8 or 16, one ray by default; the intermediate image, and so the memory, R^2 times larger;
+     * too many for the skip links' 16 bits is an error of its own; partial slabs not with the lut */
+    CHECK_EQ(p.rays, 1);
+    CHECK(!p.partial_slabs);
+    const uint32_t bad_rays[] = {0, 3, 5, 6, 7, 9, 12, 15, 17, 32, UINT32_MAX};
+    for (size_t n = 0; n < sizeof bad_rays / sizeof bad_rays[0]; n++) {
+        q = p;
+        q.rays = bad_rays[n];
+        CHECK_MSG(vf_renderer_bytes(&q, &vol, &bytes) == VF_ERR_ARG, "rays %u accepted", bad_rays[n]);
+    }
+    size_t b1, b4;
+    q = p;
+    CHECK_EQ(vf_renderer_bytes(&q, &vol, &b1), VF_OK);
+    q.rays = 4;
+    CHECK_EQ(vf_renderer_bytes(&q, &vol, &b4), VF_OK);
+    CHECK(b4 > b1 + (size_t)8 * (4 * (5 + 5 - 2) + 1) * (4 * (5 + 5 - 2) + 1) - (size_t)8 * 9 * 9 - 64);
+    vf_volume_t wide = {{4096, 2, 40}, {65536, 65536, 65536}, VF_VOXEL_U8, vox}; /* never read: sizes only */
+    q.rays = 16;
+    CHECK_EQ(vf_renderer_bytes(&q, &wide, &bytes), VF_ERR_INTERMEDIATE);
+    q.rays = 8;
+    CHECK_EQ(vf_renderer_bytes(&q, &wide, &bytes), VF_OK);
+    q = p;
+    q.partial_slabs = true;
+    CHECK_EQ(vf_renderer_bytes(&q, &vol, &bytes), VF_OK);
+    q.correction = VF_CORRECTION_LUT;
+    CHECK_EQ(vf_renderer_bytes(&q, &vol, &bytes), VF_ERR_UNSUPPORTED);
+    /* vf_factor_rays: the warp map scales exactly, the sizes keep the same intermediate points */
+    vf_factor_t f1, f4;
+    vf_view_t view = {3000, -7000, 500, 70000};
+    CHECK_EQ(vf_factor(&f1, &vol, &view, 64, 48), VF_OK);
+    f4 = f1;
+    CHECK_EQ(vf_factor_rays(NULL, 4), VF_ERR_NULL);
+    CHECK_EQ(vf_factor_rays(&f4, 3), VF_ERR_ARG);
+    CHECK_EQ(vf_factor_rays(&f4, 4), VF_OK);
+    CHECK_EQ(f4.rays, 4);
+    CHECK_EQ(f4.int_w, 4 * (f1.int_w - 1) + 1);
+    CHECK_EQ(f4.int_h, 4 * (f1.int_h - 1) + 1);
+    CHECK(f4.u0_q32 == 4 * f1.u0_q32 && f4.du_dx_q32 == 4 * f1.du_dx_q32 && f4.dv_dy_q32 == 4 * f1.dv_dy_q32);
+    CHECK(f4.si_q32 == f1.si_q32 && f4.slab_q16 == f1.slab_q16 && vf_factor_offset_u(&f4, 3) == vf_factor_offset_u(&f1, 3));
+    CHECK_EQ(vf_factor_rays(&f4, 2), VF_ERR_ARG); /* only from one ray per voxel */
+    CHECK(strcmp(vf_status_text(VF_ERR_INTERMEDIATE), vf_status_text(VF_ERR_ARG)) != 0);
     /* names */
     CHECK(vf_lookup_name(VF_LOOKUP_NEAREST) && vf_lookup_name(VF_LOOKUP_BILINEAR) && vf_lookup_name(VF_LOOKUP_COUNT));
     CHECK(strcmp(vf_lookup_name(VF_LOOKUP_NEAREST), vf_lookup_name(VF_LOOKUP_BILINEAR)) != 0);

@@ -100,11 +100,11 @@ static void constant_tf_slab_length_independent(void)
 }
 
 /* Render a scene with the core and the reference; 0 and the difference, or -1. */
-static int compare(const char *volume, const char *preset, const vf_params_t *params, const char *size,
-                   sim_diff_t *d, uint8_t **core_rgb)
+static int compare_view(const char *volume, const char *preset, const vf_params_t *params, const char *size,
+                        const char *view, sim_diff_t *d, uint8_t **core_rgb)
 {
     char err[VFP_ERR_LEN];
-    char *argv[] = {(char *)volume, "--preset", (char *)preset, "--size", (char *)size, "--view", "60,-35"};
+    char *argv[] = {(char *)volume, "--preset", (char *)preset, "--size", (char *)size, "--view", (char *)view};
     sim_opts_t o;
     sim_parse(&o, 7, argv, SIM_OPT_SCENE, "");
     o.params = *params;
@@ -134,6 +134,12 @@ static int compare(const char *volume, const char *preset, const vf_params_t *pa
     sim_image_free(&core);
     sim_scene_free(&s);
     return status ? -1 : 0;
+}
+
+static int compare(const char *volume, const char *preset, const vf_params_t *params, const char *size,
+                   sim_diff_t *d, uint8_t **core_rgb)
+{
+    return compare_view(volume, preset, params, size, "60,-35", d, core_rgb);
 }
 
 static const char *data_volume(const char *name, char *path, size_t len)
@@ -176,6 +182,48 @@ static void every_option_against_reference(void)
     CHECK_EQ(count, 32);
 }
 
+/* Rays per voxel column and partial slabs (docs/algorithm.md, sections 4b and 4c) with every mode, lookup, table
+ * width and buffer, on a volume visible up to its box (so that rays cross its side faces), against the reference
+ * with the same options: PSNR >= 50 dB and at most 2 of 255. Partial slabs go with the rebuild correction only
+ * (the core refuses them with the lut). */
+static void rays_and_partial_slabs_against_reference(void)
+{
+    int count = 0;
+    const char *views[] = {"60,-35", "200,40,10"};
+    for (uint32_t rays = 1; rays <= 4; rays *= 2)
+        for (int partial = 0; partial < 2; partial++)
+            for (int mode = 0; mode < VF_MODE_COUNT; mode++)
+                for (int lookup = 0; lookup < VF_LOOKUP_COUNT; lookup++)
+                    for (int variant = 0; variant < 3; variant++) { /* 16-bit; 8-bit; lut or image buffer */
+                        if (rays == 1 && !partial)
+                            continue; /* every_option_against_reference */
+                        vf_params_t p;
+                        vf_params_default(&p);
+                        p.mode = (vf_mode_t)mode;
+                        p.lookup = (vf_lookup_t)lookup;
+                        p.rays = rays;
+                        p.partial_slabs = partial;
+                        p.table_bits = variant == 1 ? 8 : 16;
+                        if (variant == 2 && mode == VF_MODE_PREINT1)
+                            p.buffer = VF_BUFFER_IMAGE;
+                        else if (variant == 2 && !partial)
+                            p.correction = VF_CORRECTION_LUT;
+                        else if (variant == 2)
+                            continue;
+                        sim_diff_t d;
+                        CHECK(compare_view("phantom:marschner-lobb:20", "sharp", &p, "96x80", views[count % 2], &d,
+                                           NULL) == 0);
+                        CHECK_MSG(d.psnr_db >= 50 && d.max_abs[3] <= 2,
+                                  "%s %s %u-bit %s %s buffer, rays %u, partial %d: PSNR %.1f, max %d",
+                                  vf_mode_name(p.mode), vf_lookup_name(p.lookup), p.table_bits,
+                                  vf_correction_name(p.correction), vf_buffer_name(p.buffer), rays, partial, d.psnr_db,
+                                  d.max_abs[3]);
+                        count++;
+                    }
+    printf("# %d combinations of rays and partial slabs within PSNR 50 dB and 2 levels of the reference\n", count);
+    CHECK_EQ(count, 78);
+}
+
 /* Reported, not hidden: lut against rebuild and image against slice buffers, on the same scene. */
 static void differences_reported(void)
 {
@@ -213,5 +261,6 @@ CHECK_CASES({"triangles_are_reversals", triangles_are_reversals},
             {"constant_tf_preint_is_point", constant_tf_preint_is_point},
             {"constant_tf_slab_length_independent", constant_tf_slab_length_independent},
             {"every_option_against_reference", every_option_against_reference},
+            {"rays_and_partial_slabs_against_reference", rays_and_partial_slabs_against_reference},
             {"differences_reported", differences_reported});
 CHECK_RUN("preint")

@@ -438,8 +438,8 @@ static double reference_db(study_t *st, int scene, vf_mode_t mode, int partial, 
 {
     sim_scene_t s = st->scenes[scene].scene; /* a copy: the volume is shared, not freed here */
     s.params.mode = mode;
-    s.partial_slabs = partial;
-    s.rays = rays;
+    s.params.partial_slabs = partial != 0;
+    s.params.rays = (uint32_t)rays;
     vf_image_t img;
     char err[VFP_ERR_LEN];
     if (sim_render_reference(&s, NULL, &img, err, sizeof err))
@@ -486,9 +486,9 @@ static void floor_rises_with_rays(void)
     for (int r = 0; r < 3; r++) {
         study_floor_t fl;
         char err[VFP_ERR_LEN];
-        st->scenes[scene].scene.rays = all_rays[r];
+        st->scenes[scene].scene.params.rays = (uint32_t)all_rays[r];
         int status = study_floor(st, scene, &fl, err, sizeof err);
-        st->scenes[scene].scene.rays = 1;
+        st->scenes[scene].scene.params.rays = 1;
         CHECK_MSG(status == 0, "R %d: %s", all_rays[r], err);
         printf("# R %d: %dx%d rays, floor %.3f dB; preint1 %.3f dB from the truth (partial slabs %.3f)\n",
                all_rays[r], fl.int_w, fl.int_h, fl.exact_db, fl.truth_db[REF_MODE_PREINT1][0],
