@@ -281,21 +281,26 @@ static void summarise(const variant_t *v, const plan_t *p, summary_t *out)
     free(tmp);
 }
 
-static void print_list(const double *values, int n)
+/* A JSON list of numbers with the given decimals. */
+static void print_list(const double *values, int n, int decimals)
 {
     for (int i = 0; i < n; i++)
-        printf("%s%.3f", i ? ", " : "", values[i]);
+        printf("%s%.*f", i ? ", " : "", decimals, values[i]);
 }
 
 /* How the matrix was measured: rounds, frames, order, renderers, and what the columns summarise. */
 static void print_method(const plan_t *p)
 {
-    printf("measured in %d round%s: each times every variant's %d frames once (after a warm-up frame), in table "
-           "order rotated: round%s start%s at row", p->rounds, p->rounds > 1 ? "s" : "", p->frames,
-           p->rounds > 1 ? "s" : "", p->rounds > 1 ? "" : "s");
-    for (int r = 0; r < p->rounds && r < 12; r++)
-        printf("%s %d", r ? "," : "", round_start(p, r) + 1);
-    printf("%s\n", p->rounds > 12 ? ", ..." : "");
+    if (p->rounds == 1) {
+        printf("measured in 1 round: every variant's %d frame%s once (after a warm-up frame), in table order\n",
+               p->frames, p->frames > 1 ? "s" : "");
+    } else {
+        printf("measured in %d rounds: each times every variant's %d frames once (after a warm-up frame), in table "
+               "order rotated: rounds start at row", p->rounds, p->frames);
+        for (int r = 0; r < p->rounds && r < 12; r++)
+            printf("%s %d", r ? "," : "", round_start(p, r) + 1);
+        printf("%s\n", p->rounds > 12 ? ", ..." : "");
+    }
     if (p->all_at_once)
         printf("all %d renderers set up first (%.0f MB of arenas)\n", p->count, p->total_bytes / 1048576.0);
     else
@@ -319,7 +324,7 @@ static void print_one(const sim_scene_t *s, const variant_t *v, const plan_t *p,
                about, vf_mode_name(s->params.mode), vf_lookup_name(s->params.lookup),
                vf_correction_name(s->params.correction), vf_buffer_name(s->params.buffer), p->frames, p->rounds,
                s->threads, m.mean);
-        print_list(v->round_mean, p->rounds);
+        print_list(v->round_mean, p->rounds, 3);
         printf("], \"median_ms\": %.3f, \"tables_ms\": %.3f, \"composite_ms\": %.3f, \"warp_ms\": %.3f, "
                "\"window_ms\": %.3f, \"classify_rle_ms\": %.3f, \"memory_bytes\": %zu}\n",
                m.median, m.tables, m.composite, m.warp, v->window_ms, v->classify_ms, v->memory.total);
@@ -373,10 +378,10 @@ static void print_matrix(sim_scene_t *s, const variant_t *v, const plan_t *p, in
                    "\"ms_per_frame_rounds\": [",
                    vf_mode_name(q->mode), vf_lookup_name(q->lookup), vf_correction_name(q->correction),
                    vf_buffer_name(q->buffer), m.mean, m.median, p->frames, p->rounds);
-            print_list(v[c].round_mean, p->rounds);
-            printf("], \"x_point\": %.3f, \"x_point_min\": %.3f, \"x_point_max\": %.3f, \"x_point_rounds\": [",
+            print_list(v[c].round_mean, p->rounds, 3);
+            printf("], \"x_point\": %.4f, \"x_point_min\": %.4f, \"x_point_max\": %.4f, \"x_point_rounds\": [",
                    m.ratio, m.ratio_min, m.ratio_max);
-            print_list(v[c].ratio, p->rounds);
+            print_list(v[c].ratio, p->rounds, 4);
             printf("], \"tables_ms\": %.3f, \"composite_ms\": %.3f, \"warp_ms\": %.3f, \"memory_bytes\": %zu, "
                    "\"scene\": \"%s\"}%s\n",
                    m.tables, m.composite, m.warp, v[c].memory.total, about, c + 1 < p->count ? "," : "");
