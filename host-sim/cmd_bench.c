@@ -134,13 +134,13 @@ static void variants_free(variant_t *v, int count)
     }
 }
 
-/* Create a variant's renderer and give it the window and transfer function. Returns 0, or 2 with err. */
+/* Create a variant's renderer and give it the window and transfer function. Returns 0, or 2 with err and the
+ * renderer closed (a failed one is never asked for its memory). */
 static int setup(const sim_scene_t *s, variant_t *v, char *err, size_t errlen)
 {
     int status = vfp_render_open(&v->r, &v->params, &s->vol.core, s->threads, err, errlen);
     double window_ms = 0, classify_ms = 0;
     if (status == 0) {
-        v->open = 1;
         status = vfp_render_set_window(&v->r, s->window, err, errlen);
         window_ms = v->r.ms_classify;
     }
@@ -148,7 +148,12 @@ static int setup(const sim_scene_t *s, variant_t *v, char *err, size_t errlen)
         status = vfp_render_set_tf(&v->r, s->points, s->npoints, err, errlen);
         classify_ms = v->r.ms_classify;
     }
-    if (status == 0 && !v->measured_setup) {
+    if (status) {
+        vfp_render_close(&v->r);
+        return status;
+    }
+    v->open = 1;
+    if (!v->measured_setup) {
         v->window_ms = window_ms;
         v->classify_ms = classify_ms;
         v->measured_setup = 1;
