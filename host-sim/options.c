@@ -246,6 +246,11 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
             if (!v || parse_doubles(v, &n, 1, 1) < 0 || n != (int)n || n < 1 || n > 100000)
                 return bad(a, v, "a number of frames, 1..100000");
             o->frames = (int)n;
+        } else if ((groups & SIM_OPT_ROUNDS) && strcmp(a, "--rounds") == 0) {
+            double n;
+            if (!v || parse_doubles(v, &n, 1, 1) < 0 || !(n >= 1 && n <= 1000) || n != (int)n)
+                return bad(a, v, "a number of rounds, 1..1000");
+            o->rounds = (int)n;
         } else if (a[0] == '-' && v == NULL) {
             fprintf(stderr, "volfix-sim: %s: unknown option or missing value (see --help)\n", a);
             return 2;

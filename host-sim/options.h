@@ -28,6 +28,7 @@ typedef struct sim_opts {
     int hash;                  /* --hash (render) */
     int frames;                /* --frames (bench) */
     int matrix;                /* --matrix (bench) */
+    int rounds;                /* --rounds (bench): 0 when not given (the command picks its default) */
 } sim_opts_t;
 
 /* Option groups a command accepts. */
@@ -43,6 +44,7 @@ enum {
     SIM_OPT_AGAINST = 256, /* --against reference|truth */
     SIM_OPT_PIXEL = 512,  /* --pixel X,Y */
     SIM_OPT_HASH = 1024,  /* --hash */
+    SIM_OPT_ROUNDS = 2048, /* --rounds */
 };
 
 /* Parse argv (after the command name). Returns 0, 1 when --help was asked (usage printed), or 2 after printing

@@ -1,17 +1,23 @@
 #!/bin/sh
 # make bench: the frame-time protocol of Schulze et al. (90 frames, 2 degrees apart) as their Table 1 (every
 # pre-integration variant against point sampling), the table builders, and instructions per frame from
-# callgrind (which a noisy machine does not change). Timings are means and medians of one run on this
-# machine; quote them with the machine they came from.
+# callgrind (which a noisy machine does not change). Frame times are measured in ROUNDS rounds (default 3):
+# every variant's 90 frames once per round, the order rotated from round to round, ratios to point taken
+# within a round; ms/frame is the median over rounds of each round's mean. Quote timings with the machine
+# they came from.
+# How long: about 4 minutes on the shared 2-core development machine (the matrix 70 s for engine and 2
+# minutes for brainsmall, whose slow variants take most of it; tables, callgrind and viewer under a
+# minute together); ROUNDS=1 saves about 2 minutes.
 cd "$(dirname "$0")/.." || exit 2
 sim=${BUILD:-build}/volfix-sim
 data=${VOLFIX_DATA:-../shared/data}
 size=${SIZE:-512x512}
+rounds=${ROUNDS:-3}
 if [ -d "$data" ]; then volumes="$data/engine.nhdr $data/brainsmall.nhdr"; else volumes="phantom:shepp-logan:128"; fi
 
-echo "== frame times, $size, preset ramp, 1 thread"
+echo "== frame times, $size, preset ramp, 1 thread, $rounds rounds (progress on stderr)"
 for v in $volumes; do
-    "$sim" bench "$v" --matrix --preset ramp --size "$size" || exit 1
+    "$sim" bench "$v" --matrix --rounds "$rounds" --preset ramp --size "$size" || exit 1
     echo
 done
 
@@ -24,14 +30,24 @@ echo
 if command -v valgrind >/dev/null; then
     echo "== instructions per frame (callgrind, vfp_render_frame inclusive, 2 frames averaged)"
     for v in $volumes; do
+        point=
         for mode in point preint1; do
             out=$(mktemp)
             valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=vfp_render_frame \
-                "$sim" bench "$v" --mode "$mode" --preset ramp --size "$size" --frames 1 >/dev/null 2>&1
+                "$sim" bench "$v" --mode "$mode" --preset ramp --size "$size" --frames 1 --rounds 1 >/dev/null 2>&1
             total=$(sed -n 's/^summary: \([0-9]*\).*/\1/p' "$out")
             [ -z "$total" ] && total=$(sed -n 's/^totals: \([0-9]*\).*/\1/p' "$out")
-            printf '%-24s %-8s %s instructions per frame\n' "$(basename "$v")" "$mode" "$((total / 2))"
             rm -f "$out"
+            if [ -z "$total" ]; then
+                echo "$(basename "$v") $mode: callgrind gave no count" >&2
+                continue
+            fi
+            printf '%-24s %-8s %s instructions per frame\n' "$(basename "$v")" "$mode" "$((total / 2))"
+            [ "$mode" = point ] && point=$total
+            # the frame-rate ratio the instructions predict, as the matrix's "x point" column measures it
+            [ "$mode" = preint1 ] && [ -n "$point" ] &&
+                awk -v v="$(basename "$v")" -v p="$point" -v q="$total" \
+                    'BEGIN { printf "%-24s point / preint1 = %.2f (instructions per frame)\n", v, p / q }'
         done
     done
 else

@@ -98,6 +98,17 @@ else
     fail "--rays 4" "$(cat "$tmp/out")"
 fi
 
+# bench --rounds: a positive whole number of rounds, and --help says what it does
+if "$sim" bench --help 2>&1 | grep -q -- '--rounds N'; then
+    ok "bench --help documents --rounds"
+else
+    fail "bench --help" "no --rounds"
+fi
+for bad in 0 -1 x 2.5 1001; do
+    expect_error "bad rounds $bad" "--rounds $bad: expected a number of rounds, 1..1000" bench phantom:sphere:8 --rounds $bad
+done
+expect_error "rounds missing" "--rounds (missing): expected a number of rounds" bench phantom:sphere:8 --rounds
+
 # bad volumes
 printf 'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n' >"$tmp/trunc.nrrd"
 head -c 40 /dev/zero >>"$tmp/trunc.nrrd"
@@ -154,4 +165,60 @@ if "$sim" bench phantom:sphere:24 --size 64x64 --frames 3 --json >"$tmp/out" 2>&
     ok "bench --json reports ms_per_frame over the frames asked"
 else
     fail "bench --json" "$(cat "$tmp/out")"
+fi
+
+# bench in rounds. check_rows ROUNDS FRAMES ROWS <JSON: every row has the fields, ROUNDS round means, positive
+# ratios within their min and max, point's exactly 1; prints what is wrong, if anything. Never a timing.
+check_rows() {
+    awk -v rounds="$1" -v frames="$2" -v want="$3" '
+        function num(key,   r) {
+            if (!match($0, "\"" key "\": -?[0-9.]+")) { bad = bad " no " key; return -1 }
+            r = substr($0, RSTART, RLENGTH); sub(/.*: /, "", r); return r + 0
+        }
+        function list(key,   l, n, a, i) {
+            if (!match($0, "\"" key "\": \\[[^]]*\\]")) { bad = bad " no " key; return }
+            l = substr($0, RSTART, RLENGTH); sub(/.*\[/, "", l); sub(/\]/, "", l)
+            n = split(l, a, ",")
+            if (n != rounds) bad = bad " " key " has " n " entries"
+            for (i = 1; i <= n; i++) if (!(a[i] + 0 > 0)) bad = bad " " key " entry " a[i]
+        }
+        /"mode": / {
+            rows++
+            for (k = split("mode lookup correction buffer", names, " "); k > 0; k--)
+                if ($0 !~ "\"" names[k] "\": \"[a-z0-9]+\"") bad = bad " no " names[k]
+            if (num("frames") != frames) bad = bad " frames"
+            if (num("rounds") != rounds) bad = bad " rounds"
+            if (!(num("ms_per_frame") > 0)) bad = bad " ms_per_frame"
+            list("ms_per_frame_rounds")
+            x = num("x_point"); lo = num("x_point_min"); hi = num("x_point_max")
+            if (!(lo > 0 && lo <= x && x <= hi)) bad = bad " ratio " lo " " x " " hi
+            if ($0 ~ /"mode": "point"/) { points++; if (x != 1 || lo != 1 || hi != 1) bad = bad " point " x }
+        }
+        END { if (rows != want || points != 1) bad = bad " " rows " rows, " points " of point"; if (bad) print bad }'
+}
+if [ -f "$VOLFIX_DATA/bucky.nhdr" ]; then small=$VOLFIX_DATA/bucky.nhdr; else small=phantom:sphere:32; fi
+if "$sim" bench "$small" --matrix --size 64x64 --frames 2 --rounds 2 --json >"$tmp/out" 2>"$tmp/err"; then
+    why=$(check_rows 2 2 10 <"$tmp/out")
+    if [ -z "$why" ] && [ "$(head -n 1 "$tmp/out")" = "[" ] && [ "$(tail -n 1 "$tmp/out")" = "]" ] &&
+        [ "$(grep -c '^volfix-sim bench: round [12] of 2 done' "$tmp/err")" -eq 2 ] && ! grep -q 'volfix-sim' "$tmp/out"; then
+        ok "bench --matrix --rounds 2 --json: 10 rows with two round means, ratios to point per round, progress on stderr"
+    else
+        fail "bench --matrix --rounds 2 --json" "${why:-$(head -c 300 "$tmp/out") | $(cat "$tmp/err")}"
+    fi
+else
+    fail "bench --matrix --rounds 2 --json" "$(cat "$tmp/err")"
+fi
+if "$sim" bench phantom:sphere:8 --matrix --size 16x16 --frames 1 --json >"$tmp/out" 2>/dev/null &&
+    why=$(check_rows 3 1 10 <"$tmp/out") && [ -z "$why" ]; then
+    ok "bench --matrix measures 3 rounds unless told"
+else
+    fail "bench --matrix default rounds" "${why:-$(head -c 300 "$tmp/out")}"
+fi
+if "$sim" bench phantom:sphere:16 --size 32x32 --frames 2 --rounds 3 --json >"$tmp/out" 2>"$tmp/err" &&
+    grep -q '"rounds": 3' "$tmp/out" && grep -q '"ms_per_frame_rounds": \[[0-9.]*, [0-9.]*, [0-9.]*\]' "$tmp/out" &&
+    [ "$(grep -c '^volfix-sim bench: round' "$tmp/err")" -eq 3 ] &&
+    "$sim" bench phantom:sphere:16 --size 32x32 --frames 2 --json 2>&1 | grep -q '"rounds": 1, '; then
+    ok "bench --rounds 3 without --matrix: three round means; one round unless told"
+else
+    fail "bench --rounds without --matrix" "$(cat "$tmp/out" "$tmp/err")"
 fi
