@@ -204,7 +204,7 @@ int sim_cmd_study(int argc, char **argv)
     if (ml_sharp < 0 || ml_ramp < 0 || ml_inside < 0)
         c.failed = 1;
     sweep_orders(&c, ml_sharp);
-    if (!c.failed && study_floor(st, ml_sharp, &st->floor, c.err, sizeof c.err))
+    if (!c.failed && study_floor(st, ml_sharp, 1, 0, &st->floor, c.err, sizeof c.err))
         c.failed = 1;
     st->floor.scene = ml_sharp;
     sweep_orders(&c, ml_ramp);

@@ -56,11 +56,12 @@ typedef struct study_reference {
  * intermediate pixels warped, against the truth; per mode (point, preint1, preclass, as ref_mode_t) and side-face
  * rule ([0] section 4's whole slabs, [1] partial slabs) the double reference's intermediate image against those
  * exact integrals (the integration alone) and its final image against the truth. PSNR in dB. The intermediate
- * image has the scene's rays per voxel column (sim_scene_t.params.rays; the study's scenes have 1). */
+ * image has the rays per voxel column study_floor is given (or the scene's, sim_scene_t.params.rays). */
 #define STUDY_FLOOR_MODES 3
 typedef struct study_floor {
     int done, scene;
     int rays;              /* R: R x R intermediate pixels per voxel */
+    int table_size;        /* N of the reference's tables */
     int int_w, int_h;      /* the intermediate image, R (int_w - 1) + 1 by R (int_h - 1) + 1 of section 3 */
     double exact_db;
     double integration_db[STUDY_FLOOR_MODES][2];
@@ -100,8 +101,9 @@ int study_render_core(study_t *st, int scene, const vf_params_t *params, uint8_t
 /* The scene's truth image (rendered on first use). NULL with err on failure. */
 const uint8_t *study_truth(study_t *st, int scene, char *err, size_t errlen);
 
-/* Measure a scene's floor and its integration errors (study_floor_t) into out. Returns 0, or 2 with err. */
-int study_floor(study_t *st, int scene, study_floor_t *out, char *err, size_t errlen);
+/* Measure a scene's floor and its integration errors (study_floor_t) into out, with R rays per voxel column and
+ * N table entries (0: the scene's own). Returns 0, or 2 with err. */
+int study_floor(study_t *st, int scene, int rays, int table_size, study_floor_t *out, char *err, size_t errlen);
 
 void study_free(study_t *st);
 

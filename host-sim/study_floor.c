@@ -1,7 +1,7 @@
 /*
  * study_floor.c: how much of shear-warp's distance from the ground truth is the slab integration, and how much
- * the intermediate image's resolution (one ray per voxel column, or the scene's R x R: docs/algorithm.md section 4b)
- * and the warp. For one scene:
+ * the intermediate image's resolution (one ray per voxel column, or R x R: docs/algorithm.md section 4b) and the
+ * warp. For one scene, at the R and table size asked for:
  *
  *   - the floor: the truth's own exact ray integrals taken at the intermediate pixels and warped as shear-warp
  *     warps them, against the truth's image: the best any slab integration can do at this resolution;
@@ -11,6 +11,7 @@
  *     (ref_params_t.partial_slabs).
  */
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 
 #include "study.h"
@@ -26,6 +27,38 @@ static uint8_t level(double x)
     return (uint8_t)floor(255 * fmin(fmax(x, 0), 1) + 0.5);
 }
 
+#define FLOOR_MAX_THREADS 16
+
+/* Exact integrals at the intermediate pixels of rows first_row, first_row + row_step, ... */
+typedef struct exact_job {
+    const ref_volume_t *vol;
+    const truth_tf_t *tf;
+    const truth_camera_t *cam;
+    const truth_opts_t *opts;
+    const ref_factor_t *f;
+    int rays, w, h, first_row, row_step;
+    double *exact; /* R, G, B, A per pixel */
+} exact_job_t;
+
+/* The truth's rays through intermediate pixels (U, V), at intermediate points (u, v) = (U / R, V / R): invert the
+ * warp's map u = u0 + du_dx x + du_dy y to find the final-image point each one passes through. */
+static void *exact_rows(void *arg)
+{
+    const exact_job_t *j = arg;
+    const ref_factor_t *f = j->f;
+    const double det = f->du_dx * f->dv_dy - f->du_dy * f->dv_dx;
+    for (int V = j->first_row; V < j->h; V += j->row_step)
+        for (int U = 0; U < j->w; U++) {
+            double a = (double)U / j->rays - f->u0, b = (double)V / j->rays - f->v0;
+            truth_acc_t acc;
+            truth_trace(j->vol, j->tf, j->cam, j->opts, (a * f->dv_dy - b * f->du_dy) / det,
+                        (f->du_dx * b - f->dv_dx * a) / det, &acc);
+            double *p = j->exact + 4 * ((size_t)V * j->w + U);
+            p[0] = acc.C[0], p[1] = acc.C[1], p[2] = acc.C[2], p[3] = 1 - acc.T;
+        }
+    return NULL;
+}
+
 /* Warp an intermediate image of R rays per voxel column (R, G, B, A doubles) and compare the result with the
  * truth's image. */
 static double warped_against_truth(const ref_factor_t *f, int rays, const double *inter, const double background[3],
@@ -39,7 +72,7 @@ static double warped_against_truth(const ref_factor_t *f, int rays, const double
     return d.psnr_db;
 }
 
-int study_floor(study_t *st, int scene, study_floor_t *out, char *err, size_t errlen)
+int study_floor(study_t *st, int scene, int rays, int table_size, study_floor_t *out, char *err, size_t errlen)
 {
     const uint8_t *truth = study_truth(st, scene, err, errlen);
     if (!truth)
@@ -55,7 +88,7 @@ int study_floor(study_t *st, int scene, study_floor_t *out, char *err, size_t er
     truth_tf_t *tf = malloc(sizeof *tf);
     const truth_opts_t opts = TRUTH_OPTS_DEFAULT;
     const size_t pixels = (size_t)s->width * s->height;
-    const int N = (int)s->params.table_size, R = (int)s->params.rays;
+    const int N = table_size > 0 ? table_size : (int)s->params.table_size, R = rays > 0 ? rays : (int)s->params.rays;
     int status = 2, W = 0, H = 0;
     double *exact = NULL, *inter = NULL, *table = NULL, *rgb = malloc(sizeof(double) * 3 * pixels);
     uint8_t *bytes = malloc(3 * pixels);
@@ -74,19 +107,28 @@ int study_floor(study_t *st, int scene, study_floor_t *out, char *err, size_t er
         goto done;
     }
 
-    /* The truth's rays through the intermediate pixels (U, V), at intermediate points (u, v) = (U / R, V / R):
-     * invert the warp's map u = u0 + du_dx x + du_dy y. */
-    const double det = f.du_dx * f.dv_dy - f.du_dy * f.dv_dx;
-    for (int V = 0; V < H; V++)
-        for (int U = 0; U < W; U++) {
-            double a = (double)U / R - f.u0, b = (double)V / R - f.v0;
-            truth_acc_t acc;
-            truth_trace(&in.vol, tf, &cam, &opts, (a * f.dv_dy - b * f.du_dy) / det, (f.du_dx * b - f.dv_dx * a) / det,
-                        &acc);
-            double *p = exact + 4 * ((size_t)V * W + U);
-            p[0] = acc.C[0], p[1] = acc.C[1], p[2] = acc.C[2], p[3] = 1 - acc.T;
+    /* The truth's rays through the intermediate pixels (U, V), on the study's threads (at R = 16 there are 900,000
+     * of them, three and a half times the final image's pixels). */
+    const int threads = st->threads < 1 ? 1 : st->threads > FLOOR_MAX_THREADS ? FLOOR_MAX_THREADS : st->threads;
+    exact_job_t jobs[FLOOR_MAX_THREADS];
+    pthread_t ids[FLOOR_MAX_THREADS];
+    int started = 1;
+    for (int n = 0; n < threads; n++) {
+        jobs[n] = (exact_job_t){&in.vol, tf, &cam, &opts, &f, R, W, H, n, threads, exact};
+        if (n > 0) {
+            if (pthread_create(&ids[n], NULL, exact_rows, &jobs[n]) != 0)
+                break;
+            started = n + 1;
         }
+    }
+    exact_rows(&jobs[0]);
+    for (int n = 1; n < started; n++)
+        pthread_join(ids[n], NULL);
+    /* rows a thread that could not start would have traced */
+    for (int n = started; n < threads; n++)
+        exact_rows(&jobs[n]);
     out->rays = R;
+    out->table_size = N;
     out->int_w = W;
     out->int_h = H;
     out->exact_db = warped_against_truth(&f, R, exact, in.background, truth, pixels, rgb, bytes);
