@@ -3,6 +3,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "pngio.h"
@@ -20,6 +21,26 @@ vf_params_t study_default_params(void)
 {
     vf_params_t p;
     vf_params_default(&p);
+    return p;
+}
+
+/* The smaller tables first (the table dominates the memory), then the options that cost memory for accuracy. */
+const study_mcu_candidate_t study_mcu_candidates[STUDY_MCU_CANDIDATES] = {
+    {VF_MODE_PREINT1, 256, 16, 1, false}, {VF_MODE_PREINT1, 128, 16, 1, false}, {VF_MODE_PREINT1, 128, 8, 1, false},
+    {VF_MODE_PREINT1, 64, 16, 1, false},  {VF_MODE_PREINT1, 64, 8, 1, false},   {VF_MODE_POINT, 256, 16, 1, false},
+    {VF_MODE_PREINT1, 64, 16, 1, true},   {VF_MODE_PREINT1, 64, 16, 2, false},  {VF_MODE_PREINT1, 64, 8, 2, false},
+    {VF_MODE_POINT, 256, 16, 2, false},
+};
+
+vf_params_t study_mcu_params(int k)
+{
+    vf_params_t p = study_default_params();
+    const study_mcu_candidate_t *c = &study_mcu_candidates[k];
+    p.mode = c->mode;
+    p.table_size = c->table_size;
+    p.table_bits = c->table_bits;
+    p.rays = c->rays;
+    p.partial_slabs = c->partial_slabs;
     return p;
 }
 
@@ -78,14 +99,14 @@ const uint8_t *study_truth(study_t *st, int scene, char *err, size_t errlen)
     return sc->truth;
 }
 
-/* The reference for the algorithm's options (mode, table size, lookup, correction), at full precision: the
- * core's precision knobs, 8- to 12-bit tables included, are what the study measures against it. */
+/* The reference for the algorithm's options (mode, table size, lookup, correction, rays, partial slabs), at full
+ * precision: the core's precision knobs, 8- to 12-bit tables included, are what the study measures against it. */
 static const uint8_t *reference_for(study_t *st, int scene, const vf_params_t *p, char *err, size_t errlen)
 {
     for (int i = 0; i < st->reference_count; i++) {
         study_reference_t *r = &st->references[i];
         if (r->scene == scene && r->mode == p->mode && r->table_size == p->table_size && r->lookup == p->lookup &&
-            r->correction == p->correction)
+            r->correction == p->correction && r->rays == p->rays && r->partial_slabs == p->partial_slabs)
             return r->rgb;
     }
     if (st->reference_count == STUDY_MAX_REFERENCES) {
@@ -98,7 +119,9 @@ static const uint8_t *reference_for(study_t *st, int scene, const vf_params_t *p
     s.params.table_size = p->table_size;
     s.params.lookup = p->lookup;
     s.params.correction = p->correction;
-    vf_factor_t factor;
+    s.params.rays = p->rays;
+    s.params.partial_slabs = p->partial_slabs;
+    vf_factor_t factor; /* one ray per voxel column: the reference takes its slice offsets, which are in voxels */
     vf_status_t fs = vf_factor(&factor, &s.vol.core, &s.view, s.width, s.height);
     if (fs != VF_OK) {
         snprintf(err, errlen, "cannot factor the view: %s", vf_status_text(fs));
@@ -113,6 +136,8 @@ static const uint8_t *reference_for(study_t *st, int scene, const vf_params_t *p
     r->table_size = p->table_size;
     r->lookup = p->lookup;
     r->correction = p->correction;
+    r->rays = p->rays;
+    r->partial_slabs = p->partial_slabs;
     int status = to_rgb(&img, &r->rgb);
     sim_image_free(&img);
     if (status) {
@@ -123,7 +148,54 @@ static const uint8_t *reference_for(study_t *st, int scene, const vf_params_t *p
     return r->rgb;
 }
 
-/* Render with the core; memory and band scratch too when asked. */
+static int compare_ms(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* CPU time of the calling thread, ms: a one-thread frame runs on it (render_mt.c), and unlike the wall clock it
+ * does not count the time other work on a shared machine takes the processor away. */
+static double thread_cpu_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
+}
+
+static double median(double *x, int n)
+{
+    qsort(x, (size_t)n, sizeof *x, compare_ms);
+    return n % 2 ? x[n / 2] : (x[n / 2 - 1] + x[n / 2]) / 2;
+}
+
+/* Time st->time_frames more frames, each 2 degrees further round the vertical axis than the last (a turning
+ * knob: the slab length changes, so every frame rebuilds the tables), and keep in the run the median CPU time of
+ * a frame and the median wall-clock time of its table rebuild. */
+static int time_frames(study_t *st, vfp_render_t *r, const vf_view_t *view, vf_image_t *img, study_run_t *run,
+                       char *err, size_t errlen)
+{
+    enum { MOST = 15 };
+    double total[MOST], tables[MOST];
+    int n = st->time_frames < MOST ? st->time_frames : MOST;
+    for (int i = 0; i < n; i++) {
+        vf_view_t v = *view;
+        v.azimuth += sim_bau(2.0 * (i + 1));
+        double t0 = thread_cpu_ms();
+        if (vfp_render_frame(r, &v, img, err, errlen))
+            return 2;
+        total[i] = thread_cpu_ms() - t0;
+        tables[i] = r->ms_tables;
+    }
+    if (n > 0) {
+        run->frames_timed = n;
+        run->frame_ms = median(total, n);
+        run->frame_tables_ms = median(tables, n);
+    }
+    return 0;
+}
+
+/* Render with the core; memory, band scratch and frame times too when asked. */
 static int render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, study_run_t *run, char *err,
                        size_t errlen)
 {
@@ -148,6 +220,7 @@ static int render_core(study_t *st, int scene, const vf_params_t *params, uint8_
             run->ms = vfp_now_ms() - t0;
             vf_renderer_memory(r.core, &run->memory);
             run->band_bytes = vf_band_scratch_bytes(r.core, 8);
+            status = time_frames(st, &r, &s->view, &img, run, err, errlen);
         }
     }
     vfp_render_close(&r);
@@ -210,7 +283,10 @@ study_run_t *study_run(study_t *st, int scene, const vf_params_t *params, const 
     sim_diff(rgb, ref, pixels, &run->vs_reference);
     if (truth)
         sim_diff(rgb, truth, pixels, &run->vs_truth);
-    free(rgb);
+    if (st->keep_images)
+        run->rgb = rgb;
+    else
+        free(rgb);
     st->run_count++;
     progress(st, run);
     return run;
@@ -224,6 +300,8 @@ void study_free(study_t *st)
     }
     for (int i = 0; i < st->reference_count; i++)
         free(st->references[i].rgb);
+    for (int i = 0; i < st->run_count; i++)
+        free(st->runs[i].rgb);
     st->reference_count = 0;
     st->scene_count = st->run_count = 0;
 }

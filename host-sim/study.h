@@ -15,6 +15,11 @@
 #define STUDY_MAX_SCENES 64
 #define STUDY_MAX_RUNS 2048
 
+/* Claim 1 with the errors point and preint1 share removed (docs/algorithm.md 4b and 4c): 16 x 16 rays per voxel
+ * column, partial slabs at the side faces, 1024 table entries; the sweeps' factor "rays_partial_1024". */
+#define STUDY_CLAIM_RAYS 16u
+#define STUDY_CLAIM_TABLE 1024u
+
 /* One scene: volume, transfer function, view and size; its truth image is rendered once. */
 typedef struct study_scene {
     char label[64];        /* "ml41-sharp" */
@@ -37,20 +42,29 @@ typedef struct study_run {
     vf_memory_t memory;
     size_t band_bytes;     /* buffer slices and skip links for one thread (8-row bands) */
     double ms;             /* one core frame on this machine, informative only */
+    /* With study_t.time_frames: that many more frames, each 2 degrees further round the vertical axis (so the
+     * tables are rebuilt for each, as when a knob turns the view): the median CPU time of a frame (one thread) and
+     * the median wall-clock time of its table rebuild. This machine: informative, not a benchmark (make bench is).
+     * 0 when not timed. */
+    int frames_timed;
+    double frame_ms, frame_tables_ms;
+    uint8_t *rgb;          /* the core's image, kept when study_t.keep_images was set for the run, else NULL */
 } study_run_t;
 
-/* Reference images depend on the scene and the algorithm's options (mode, table size, lookup, correction), not
- * on the core's precision: each is rendered once. */
+/* Reference images depend on the scene and the algorithm's options (mode, table size, lookup, correction, rays,
+ * partial slabs), not on the core's precision: each is rendered once. */
 typedef struct study_reference {
     int scene;
     vf_mode_t mode;
     uint32_t table_size;
     vf_lookup_t lookup;
     vf_correction_t correction;
+    uint32_t rays;
+    bool partial_slabs;
     uint8_t *rgb;
 } study_reference_t;
 
-#define STUDY_MAX_REFERENCES 256
+#define STUDY_MAX_REFERENCES 512
 
 /* Where one scene's distance from the truth comes from (study_floor.c): the floor, exact ray integrals at the
  * intermediate pixels warped, against the truth; per mode (point, preint1, preclass, as ref_mode_t) and side-face
@@ -58,6 +72,7 @@ typedef struct study_reference {
  * exact integrals (the integration alone) and its final image against the truth. PSNR in dB. The intermediate
  * image has the rays per voxel column study_floor is given (or the scene's, sim_scene_t.params.rays). */
 #define STUDY_FLOOR_MODES 3
+#define STUDY_RAYS_STEPS 5 /* R = 1, 2, 4, 8, 16 */
 typedef struct study_floor {
     int done, scene;
     int rays;              /* R: R x R intermediate pixels per voxel */
@@ -81,7 +96,27 @@ typedef struct study {
     double started_ms;
     int progress_tty;      /* rewrite one progress line (a terminal) or print one per run (a log) */
     study_floor_t floor;   /* of the whole-view Marschner-Lobb scene, for the report's first claim */
+    /* The same at R = 1, 2, 4, 8, 16 rays per voxel column (index log2 R; .done 0 where not measured: the quick
+     * study measures R = 1 only, which is floor) */
+    study_floor_t rays_floor[STUDY_RAYS_STEPS];
+    int time_frames;       /* study_run: frames to time after the compared one (0: the compared frame only) */
+    int keep_images;       /* study_run: keep the core's image in the run (for strips of non-default options) */
 } study_t;
+
+/* Candidate configurations for a microcontroller with 256 KB of RAM (the report's recommendation (b)). cmd_study.c
+ * runs each on the microcontroller's own scene (boards/mps2-an386: bucky at 64x64, "bucky-sharp-64"), factor
+ * "mcu", value the candidate's index. */
+typedef struct study_mcu_candidate {
+    vf_mode_t mode;
+    uint32_t table_size, table_bits, rays;
+    bool partial_slabs;
+} study_mcu_candidate_t;
+
+#define STUDY_MCU_CANDIDATES 10
+extern const study_mcu_candidate_t study_mcu_candidates[STUDY_MCU_CANDIDATES];
+
+/* The default parameters with candidate k's options. */
+vf_params_t study_mcu_params(int k);
 
 /* Add a scene; returns its index, or -1 with err. The volume is loaded at once. */
 int study_add_scene(study_t *st, const char *label, const char *volume, const char *preset, double azimuth,
