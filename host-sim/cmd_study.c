@@ -1,8 +1,9 @@
 /*
  * cmd_study.c: volfix-sim study: what to run. One factor at a time around the default configuration, and the
- * pairs that interact (table size with lookup; mode with smooth and sharp transfer functions), on Marschner-Lobb
- * 41^3 above all, and the shared volumes when they are there. --quick is the subset make test runs (under two
- * minutes); the full study adds scenes, volumes and views.
+ * pairs that interact (table size with lookup; mode with smooth and sharp transfer functions; rays per voxel
+ * column with the side-face rule and the table size), on Marschner-Lobb 41^3 above all, and the shared volumes
+ * when they are there. --quick is the subset make test runs (under two minutes); the full study adds scenes,
+ * volumes and views.
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,7 +21,8 @@ static const char usage[] =
     "truth ray caster (the algorithm's own error), with the memory it needs. One factor at a time around the\n"
     "default (preint1, 256 entries, 16-bit tables, nearest, rebuild, exact samples, 16-bit accumulation and\n"
     "warp): bits of the tables, samples, intermediate image and warp; table size with lookup; correction;\n"
-    "mode with smooth and sharp transfer functions. Writes to DIR: results.csv, summary.json, plots (PNG,\n"
+    "mode with smooth and sharp transfer functions; rays per voxel column (1 to 16) with whole and partial\n"
+    "slabs at 256 and 1024 entries. Writes to DIR: results.csv, summary.json, plots (PNG,\n"
     "with gnuplot), image strips and report.md with a recommended configuration for a Raspberry Pi class\n"
     "board and for a microcontroller with 256 KB of RAM.\n\n"
     "  --quick              the subset that runs in make test (under two minutes)\n"
@@ -105,6 +107,58 @@ static void sweep_orders(sweep_ctx_t *c, int scene)
     run(c, scene, &p, "correction", "lut");
     p.correction = VF_CORRECTION_REBUILD;
     run(c, scene, &p, "correction", "rebuild");
+}
+
+/* Rays per voxel column (docs/algorithm.md 4b) with each side-face rule (4c) and table size: the options that
+ * take away the errors point and preint1 share (the intermediate image's resolution, whole slabs at the box's
+ * faces, the table's resolution), each mode at every R. Factor "rays_whole_256" and the like, value R. The quick
+ * study runs claim 1's configuration (16 rays, partial slabs, 1024 entries: every mode, for the strip) and eight
+ * rays with it for point and preint1 (about one ray per output pixel); the full one all of it, and times frames. */
+static void sweep_rays(sweep_ctx_t *c, int scene, int quick)
+{
+    const unsigned sizes[] = {256, STUDY_CLAIM_TABLE}, rays[] = {1, 2, 4, 8, 16};
+    c->st->time_frames = quick ? 0 : 5;
+    for (size_t n = 0; n < 2; n++)
+        for (int partial = 0; partial < 2; partial++)
+            for (size_t k = 0; k < sizeof rays / sizeof *rays; k++)
+                for (int mode = 0; mode < VF_MODE_COUNT; mode++) {
+                    const int claim = sizes[n] == STUDY_CLAIM_TABLE && partial && rays[k] == STUDY_CLAIM_RAYS;
+                    if (quick && (sizes[n] != STUDY_CLAIM_TABLE || !partial || (rays[k] != 8 && !claim) ||
+                                  (mode == VF_MODE_PRECLASS && !claim)))
+                        continue;
+                    vf_params_t p = study_default_params();
+                    p.mode = (vf_mode_t)mode;
+                    p.table_size = sizes[n];
+                    p.partial_slabs = partial != 0;
+                    p.rays = rays[k];
+                    char factor[32];
+                    snprintf(factor, sizeof factor, "rays_%s_%u", partial ? "partial" : "whole", sizes[n]);
+                    c->st->keep_images = claim; /* for the strip of claim 1's configuration */
+                    run_uint(c, scene, &p, factor, rays[k]);
+                    c->st->keep_images = 0;
+                }
+    c->st->time_frames = 0;
+}
+
+/* The same options on other scenes, at each scene's own output size and table (what they are worth depends on
+ * how many output pixels a voxel covers, and on whether the volume is visible up to its box): point and preint1,
+ * R = 1 up to most_rays, whole and partial slabs. */
+static void sweep_rays_elsewhere(sweep_ctx_t *c, int scene, uint32_t table_size, unsigned most_rays)
+{
+    c->st->time_frames = c->st->quick ? 0 : 5;
+    for (int partial = 0; partial < 2; partial++)
+        for (unsigned r = 1; r <= most_rays; r *= 2)
+            for (int mode = 0; mode < 2; mode++) {
+                vf_params_t p = study_default_params();
+                p.mode = mode ? VF_MODE_PREINT1 : VF_MODE_POINT;
+                p.table_size = table_size;
+                p.partial_slabs = partial != 0;
+                p.rays = r;
+                char factor[32];
+                snprintf(factor, sizeof factor, "rays_%s_%u", partial ? "partial" : "whole", table_size);
+                run_uint(c, scene, &p, factor, r);
+            }
+    c->st->time_frames = 0;
 }
 
 /* Point sampling against pre-integration only (the width sweep needs no more). */
@@ -207,6 +261,18 @@ int sim_cmd_study(int argc, char **argv)
     if (!c.failed && study_floor(st, ml_sharp, 1, 0, &st->floor, c.err, sizeof c.err))
         c.failed = 1;
     st->floor.scene = ml_sharp;
+    /* Claim 1 again without the errors both orders share; in the full study the floor at each R too (at 1024
+     * entries, claim 1's), which says how much of what is left is the slab integration. */
+    sweep_rays(&c, ml_sharp, st->quick);
+    for (int k = 0; k < STUDY_RAYS_STEPS && !c.failed && !st->quick; k++) {
+        if (study_floor(st, ml_sharp, 1 << k, STUDY_CLAIM_TABLE, &st->rays_floor[k], c.err, sizeof c.err))
+            c.failed = 1;
+        st->rays_floor[k].scene = ml_sharp;
+        if (!c.failed)
+            fprintf(stderr, "%sstudy: %.0f s: ml41-sharp floor with %d rays per voxel column: %.1f dB%s",
+                    st->progress_tty ? "\r" : "", (vfp_now_ms() - st->started_ms) / 1000, 1 << k,
+                    st->rays_floor[k].exact_db, st->progress_tty ? "" : "\n");
+    }
     sweep_orders(&c, ml_ramp);
     sweep_orders(&c, ml_inside);
     sweep_bits(&c, ml_sharp);
@@ -246,11 +312,12 @@ int sim_cmd_study(int argc, char **argv)
         const char *file, *label, *preset;
         double az, el;
         int quick;
+        unsigned most_rays; /* the full study's rays sweep on the scene: R = 1 up to this (0: none) */
     } shared[] = {
-        {"neghip.nhdr", "neghip-sharp", "sharp", 30, 20, 1},    {"neghip.nhdr", "neghip-mr-brain", "mr-brain", 30, 20, 0},
-        {"brainsmall.nhdr", "brain-mr-brain", "mr-brain", 0, -90, 0}, {"engine.nhdr", "engine-ct-bone", "ct-bone", 30, 20, 0},
-        {"engine.nhdr", "engine-ramp", "ramp", 30, 20, 0},      {"cthead.nhdr", "cthead-ct-skin-bone", "ct-skin-bone", 180, 90, 0},
-        {"headsq.nhdr", "headsq-ct-bone", "ct-bone", 30, 20, 0}, {"bucky.nhdr", "bucky-sharp", "sharp", 30, 20, 0},
+        {"neghip.nhdr", "neghip-sharp", "sharp", 30, 20, 1, 4},    {"neghip.nhdr", "neghip-mr-brain", "mr-brain", 30, 20, 0, 0},
+        {"brainsmall.nhdr", "brain-mr-brain", "mr-brain", 0, -90, 0, 0}, {"engine.nhdr", "engine-ct-bone", "ct-bone", 30, 20, 0, 2},
+        {"engine.nhdr", "engine-ramp", "ramp", 30, 20, 0, 0},      {"cthead.nhdr", "cthead-ct-skin-bone", "ct-skin-bone", 180, 90, 0, 0},
+        {"headsq.nhdr", "headsq-ct-bone", "ct-bone", 30, 20, 0, 0}, {"bucky.nhdr", "bucky-sharp", "sharp", 30, 20, 0, 4},
     };
     for (size_t i = 0; i < sizeof shared / sizeof shared[0] && !c.failed; i++) {
         if (st->quick && !shared[i].quick)
@@ -267,6 +334,24 @@ int sim_cmd_study(int argc, char **argv)
         sweep_orders(&c, s);
         if (!st->quick)
             sweep_bits(&c, s);
+        if (!st->quick && shared[i].most_rays)
+            sweep_rays_elsewhere(&c, s, 256, shared[i].most_rays);
+    }
+    /* The microcontroller's scene (boards/mps2-an386: bucky at 64x64) with the table it can hold, one and two
+     * rays, whole and partial slabs (what the options are worth where a voxel covers about one output pixel), and
+     * each candidate configuration for such a board. */
+    snprintf(path, sizeof path, "%s/bucky.nhdr", data);
+    if (!c.failed && exists(path)) {
+        int s = study_add_scene(st, "bucky-sharp-64", path, "sharp", 30, 20, 1, 64, c.err, sizeof c.err);
+        if (s < 0)
+            c.failed = 1;
+        sweep_rays_elsewhere(&c, s, 64, 2);
+        st->time_frames = st->quick ? 0 : 5;
+        for (int k = 0; k < STUDY_MCU_CANDIDATES; k++) { /* the report's candidates for such a board */
+            vf_params_t p = study_mcu_params(k);
+            run_uint(&c, s, &p, "mcu", (unsigned)k);
+        }
+        st->time_frames = 0;
     }
     if (!st->quick && !c.failed) { /* the other phantoms */
         int sl = study_add_scene(st, "shepp-logan-ramp", "phantom:shepp-logan:96", "ramp", 0, -60, 1, small, c.err,
