@@ -22,7 +22,8 @@ static const char usage[] =
     "default (preint1, 256 entries, 16-bit tables, nearest, rebuild, exact samples, 16-bit accumulation and\n"
     "warp): bits of the tables, samples, intermediate image and warp; table size with lookup; correction;\n"
     "mode with smooth and sharp transfer functions; rays per voxel column (1 to 16) with whole and partial\n"
-    "slabs at 256 and 1024 entries. Writes to DIR: results.csv, summary.json, plots (PNG,\n"
+    "slabs at 256 and 1024 entries (the full study counts their instructions per frame with valgrind's\n"
+    "callgrind when it is installed). Writes to DIR: results.csv, summary.json, plots (PNG,\n"
     "with gnuplot), image strips and report.md with a recommended configuration for a Raspberry Pi class\n"
     "board and for a microcontroller with 256 KB of RAM.\n\n"
     "  --quick              the subset that runs in make test (under two minutes)\n"
@@ -134,8 +135,11 @@ static void sweep_rays(sweep_ctx_t *c, int scene, int quick)
                     char factor[32];
                     snprintf(factor, sizeof factor, "rays_%s_%u", partial ? "partial" : "whole", sizes[n]);
                     c->st->keep_images = claim; /* for the strip of claim 1's configuration */
+                    /* instructions per frame for point and preint1 (R = 16 under callgrind: a minute or two each) */
+                    c->st->count_instructions = !quick && mode != VF_MODE_PRECLASS &&
+                                                (rays[k] <= 4 || (rays[k] == 8 && partial) || claim);
                     run_uint(c, scene, &p, factor, rays[k]);
-                    c->st->keep_images = 0;
+                    c->st->keep_images = c->st->count_instructions = 0;
                 }
     c->st->time_frames = 0;
 }
@@ -146,6 +150,7 @@ static void sweep_rays(sweep_ctx_t *c, int scene, int quick)
 static void sweep_rays_elsewhere(sweep_ctx_t *c, int scene, uint32_t table_size, unsigned most_rays)
 {
     c->st->time_frames = c->st->quick ? 0 : 5;
+    c->st->count_instructions = !c->st->quick;
     for (int partial = 0; partial < 2; partial++)
         for (unsigned r = 1; r <= most_rays; r *= 2)
             for (int mode = 0; mode < 2; mode++) {
@@ -158,7 +163,7 @@ static void sweep_rays_elsewhere(sweep_ctx_t *c, int scene, uint32_t table_size,
                 snprintf(factor, sizeof factor, "rays_%s_%u", partial ? "partial" : "whole", table_size);
                 run_uint(c, scene, &p, factor, r);
             }
-    c->st->time_frames = 0;
+    c->st->time_frames = c->st->count_instructions = 0;
 }
 
 /* Point sampling against pre-integration only (the width sweep needs no more). */
@@ -203,6 +208,7 @@ int sim_cmd_study(int argc, char **argv)
         return 2;
     }
     st->threads = 2;
+    st->have_valgrind = -1;
     for (int i = 0; i < argc; i++) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             fputs(usage, stdout);
@@ -347,11 +353,12 @@ int sim_cmd_study(int argc, char **argv)
             c.failed = 1;
         sweep_rays_elsewhere(&c, s, 64, 2);
         st->time_frames = st->quick ? 0 : 5;
+        st->count_instructions = !st->quick;
         for (int k = 0; k < STUDY_MCU_CANDIDATES; k++) { /* the report's candidates for such a board */
             vf_params_t p = study_mcu_params(k);
             run_uint(&c, s, &p, "mcu", (unsigned)k);
         }
-        st->time_frames = 0;
+        st->time_frames = st->count_instructions = 0;
     }
     if (!st->quick && !c.failed) { /* the other phantoms */
         int sl = study_add_scene(st, "shepp-logan-ramp", "phantom:shepp-logan:96", "ramp", 0, -60, 1, small, c.err,

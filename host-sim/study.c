@@ -238,9 +238,12 @@ static void progress(study_t *st, const study_run_t *run)
     const study_scene_t *sc = &st->scenes[run->scene];
     double seconds = (vfp_now_ms() - st->started_ms) / 1000;
     char line[256];
-    char truth[48] = "";
+    char truth[96] = "";
     if (run->vs_truth.pixels)
         snprintf(truth, sizeof truth, ", %.1f dB from the truth", run->vs_truth.psnr_db);
+    if (run->instructions)
+        snprintf(truth + strlen(truth), sizeof truth - strlen(truth), ", %.1f M instructions per frame",
+                 run->instructions / 1e6);
     snprintf(line, sizeof line, "study: %d runs, %.0f s: %s %s %s = %s: %.1f dB from the reference%s", st->run_count,
              seconds, sc->label, vf_mode_name(run->params.mode), run->factor, run->value, run->vs_reference.psnr_db,
              truth);
@@ -280,6 +283,8 @@ study_run_t *study_run(study_t *st, int scene, const vf_params_t *params, const 
         free(rgb);
         return NULL;
     }
+    if (st->count_instructions)
+        run->instructions = study_instructions(st, scene, params);
     sim_diff(rgb, ref, pixels, &run->vs_reference);
     if (truth)
         sim_diff(rgb, truth, pixels, &run->vs_truth);
@@ -290,6 +295,49 @@ study_run_t *study_run(study_t *st, int scene, const vf_params_t *params, const 
     st->run_count++;
     progress(st, run);
     return run;
+}
+
+uint64_t study_instructions(study_t *st, int scene, const vf_params_t *p)
+{
+    if (st->have_valgrind < 0)
+        st->have_valgrind = system("valgrind --version >/dev/null 2>&1") == 0;
+    char self[1024];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    if (!st->have_valgrind || n <= 0)
+        return 0;
+    self[n] = 0;
+    char out[] = "/tmp/volfix-study-callgrind-XXXXXX";
+    int fd = mkstemp(out);
+    if (fd < 0)
+        return 0;
+    close(fd);
+    const study_scene_t *sc = &st->scenes[scene];
+    const int is_file = strncmp(sc->preset, "file:", 5) == 0;
+    char command[4096];
+    snprintf(command, sizeof command,
+             "valgrind --tool=callgrind --callgrind-out-file='%s' --toggle-collect=vfp_render_frame '%s' bench '%s' "
+             "%s '%s' --view %g,%g --zoom %g --size %ux%u --mode %s --table-size %u --table-bits %u --lookup %s "
+             "--correction %s --buffer %s --rays %u%s --frames 1 --rounds 1 >/dev/null 2>&1",
+             out, self, sc->volume, is_file ? "--tf" : "--preset", is_file ? sc->preset + 5 : sc->preset, sc->azimuth,
+             sc->elevation, sc->zoom, sc->size, sc->size, vf_mode_name(p->mode), p->table_size, p->table_bits,
+             vf_lookup_name(p->lookup), vf_correction_name(p->correction), vf_buffer_name(p->buffer), p->rays,
+             p->partial_slabs ? " --partial-slabs" : "");
+    uint64_t total = 0;
+    if (system(command) == 0) {
+        FILE *f = fopen(out, "r");
+        char line[512];
+        unsigned long long summary = 0, totals = 0;
+        while (f && fgets(line, sizeof line, f)) {
+            if (sscanf(line, "summary: %llu", &summary) == 1)
+                continue;
+            sscanf(line, "totals: %llu", &totals);
+        }
+        if (f)
+            fclose(f);
+        total = (summary ? summary : totals) / 2;
+    }
+    unlink(out);
+    return total;
 }
 
 void study_free(study_t *st)

@@ -49,6 +49,10 @@ typedef struct study_run {
     int frames_timed;
     double frame_ms, frame_tables_ms;
     uint8_t *rgb;          /* the core's image, kept when study_t.keep_images was set for the run, else NULL */
+    /* With study_t.count_instructions: instructions per frame under callgrind (study_instructions), 0 if not
+     * counted. They do not depend on how busy the machine is, and they carry over to other processors better
+     * than a time does. */
+    uint64_t instructions;
 } study_run_t;
 
 /* Reference images depend on the scene and the algorithm's options (mode, table size, lookup, correction, rays,
@@ -101,6 +105,8 @@ typedef struct study {
     study_floor_t rays_floor[STUDY_RAYS_STEPS];
     int time_frames;       /* study_run: frames to time after the compared one (0: the compared frame only) */
     int keep_images;       /* study_run: keep the core's image in the run (for strips of non-default options) */
+    int count_instructions; /* study_run: count instructions per frame (when valgrind is there) */
+    int have_valgrind;     /* -1 not asked yet, 0 no, 1 yes */
 } study_t;
 
 /* Candidate configurations for a microcontroller with 256 KB of RAM (the report's recommendation (b)). cmd_study.c
@@ -129,6 +135,12 @@ vf_params_t study_default_params(void);
  * first if they are not cached) and record it. Returns the run, or NULL with err. */
 study_run_t *study_run(study_t *st, int scene, const vf_params_t *params, const char *factor, const char *value,
                        int with_truth, char *err, size_t errlen);
+
+/* Instructions per frame of the core with these parameters on a scene, as tools/bench.sh counts them: callgrind
+ * around vfp_render_frame of `volfix-sim bench SCENE --frames 1 --rounds 1` (a warm-up frame and one more, 2
+ * degrees apart, tables rebuilt for each), halved. The precision knobs (sample, intermediate, warp bits) are not
+ * passed: count only default-precision runs. 0 when valgrind is not installed or the count failed. */
+uint64_t study_instructions(study_t *st, int scene, const vf_params_t *params);
 
 /* Render a scene's core image for a configuration into rgb (size * size * 3). Returns 0, or 2 with err. */
 int study_render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, char *err, size_t errlen);
