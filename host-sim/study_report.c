@@ -479,13 +479,13 @@ static int plot_rays(const study_t *st, char *err, size_t errlen)
                     points++;
                 }
             }
+            if (!points) /* gnuplot does not count empty data sets: write none */
+                continue;
             fprintf(d, "\n\n");
-            if (points)
-                fprintf(g, "%s'rays.dat' index %d using 1:2 with linespoints lw 2 pt %d dashtype %d lc %d title '%s, "
-                           "%s slabs'",
-                        lines++ ? ", " : "", block, 7 - 2 * partial, partial ? 1 : 2, m + 1, vf_mode_name(modes[m]),
-                        partial ? "partial" : "whole");
-            block++;
+            fprintf(g, "%s'rays.dat' index %d using 1:2 with linespoints lw 2 pt %d dashtype %d lc %d title '%s, "
+                       "%s slabs'",
+                    lines++ ? ", " : "", block++, 7 - 2 * partial, partial ? 1 : 2, m + 1, vf_mode_name(modes[m]),
+                    partial ? "partial" : "whole");
         }
     fprintf(g, "%s\n", lines ? "" : "NaN notitle");
     /* right: preint1's gain over point, each table size and side-face rule */
@@ -504,13 +504,13 @@ static int plot_rays(const study_t *st, char *err, size_t errlen)
                     points++;
                 }
             }
+            if (!points)
+                continue;
             fprintf(d, "\n\n");
-            if (points)
-                fprintf(g, "%s'rays.dat' index %d using 1:2 with linespoints lw 2 pt %d dashtype %d lc %d title '%u "
-                           "entries, %s slabs'",
-                        lines++ ? ", " : "", block, 7 - 2 * partial, partial ? 1 : 2, n ? 2 : 4, sizes[n],
-                        partial ? "partial" : "whole");
-            block++;
+            fprintf(g, "%s'rays.dat' index %d using 1:2 with linespoints lw 2 pt %d dashtype %d lc %d title '%u "
+                       "entries, %s slabs'",
+                    lines++ ? ", " : "", block++, 7 - 2 * partial, partial ? 1 : 2, n ? 2 : 4, sizes[n],
+                    partial ? "partial" : "whole");
         }
     fprintf(g, "%s6 with lines dashtype 3 lc rgb 'black' title 'the claim: 6 dB'\nunset multiplot\n", lines ? ", " : "");
     fclose(d);
@@ -688,7 +688,7 @@ static void pi_rays(FILE *f, const study_t *st)
     double gain2_min = 1e9, gain2_max = -1e9, cost2_min = 1e9, cost2_max = 0, gain4_min = 1e9, gain4_max = -1e9;
     double cost4_min = 1e9, cost4_max = 0;
     double part_ml = 0, part_other = 0, minified_gain = -1e9, minified_ppv = 0;
-    const char *gain2_min_at = "", *gain2_max_at = "", *minified_at = "";
+    const char *gain2_min_at = "", *gain2_max_at = "", *minified_at = "", *cost2_min_at = "", *cost2_max_at = "";
     int part_ml_r = 0, by_instructions = 1;
     for (int i = 0; i < count; i++) {
         const study_scene_t *sc = &st->scenes[scenes[i]];
@@ -733,8 +733,10 @@ static void pi_rays(FILE *f, const study_t *st)
             gain2_min = gain2, gain2_min_at = sc->label;
         if (gain2 > gain2_max)
             gain2_max = gain2, gain2_max_at = sc->label;
-        cost2_min = cost2 < cost2_min ? cost2 : cost2_min;
-        cost2_max = cost2 > cost2_max ? cost2 : cost2_max;
+        if (cost2 < cost2_min)
+            cost2_min = cost2, cost2_min_at = sc->label;
+        if (cost2 > cost2_max)
+            cost2_max = cost2, cost2_max_at = sc->label;
         if (ppv >= 2 && r[2]) {
             double gain4 = r[2]->vs_truth.psnr_db - r[1]->vs_truth.psnr_db;
             double cost4 = cost_ratio(r[2], r[1], &by_instructions);
@@ -760,9 +762,10 @@ static void pi_rays(FILE *f, const study_t *st)
     const study_run_t *m1w = find_rays(st, "ml41-sharp", 0, 256, 1, VF_MODE_PREINT1);
     const study_run_t *m1k = find_rays(st, "ml41-sharp", 1, STUDY_CLAIM_TABLE, 1, VF_MODE_PREINT1);
     fprintf(f, "Recommended for such a board, on top of the defaults: **2 x 2 rays per voxel column** (`rays = 2`) on "
-               "any display: every scene measured came %.2f (%s) to %.2f dB (%s) closer to the truth with it, for %.1f "
-               "to %.1f times the %s per frame and about four times the intermediate image.",
-            gain2_min, gain2_min_at, gain2_max, gain2_max_at, cost2_min, cost2_max,
+               "any display, where the frame budget allows: every scene measured came %.2f (%s) to %.2f dB (%s) closer "
+               "to the truth with it, for %.1f (%s) to %.1f times (%s) the %s per frame and about four times the "
+               "intermediate image.",
+            gain2_min, gain2_min_at, gain2_max, gain2_max_at, cost2_min, cost2_min_at, cost2_max, cost2_max_at,
             by_instructions ? "instructions" : "time");
     if (minified_gain > 1)
         fprintf(f, " Rays pay where a voxel covers less than an output pixel too (%s, %.2f pixels per voxel: %+.2f dB): "
@@ -787,21 +790,41 @@ static void pi_rays(FILE *f, const study_t *st)
                    "%d); on the other scenes they changed at most %+.2f dB. They cost no memory%s",
                 part_ml, part_ml_r, part_other, m1 && m1w ? "" : ".");
     if (part_ml_r && m1 && m1w) {
-        /* their cost on Marschner-Lobb, 256 entries, at one ray and at four */
+        /* their cost at one ray on every scene, and on Marschner-Lobb at four */
         const study_run_t *m4w = find_rays(st, "ml41-sharp", 0, 256, 4, VF_MODE_PREINT1);
         int by = 1;
-        double c1 = cost_ratio(m1, m1w, &by), c4 = cost_ratio(m4, m4w, &by);
-        fprintf(f, " and %.0f%% more %s at one ray, %.0f%% at four (Marschner-Lobb, 256 entries; the core composites "
-                   "the face pixels exactly rather than fast, core/composite_partial.c).",
-                100 * (c1 - 1), by ? "instructions" : "time", 100 * (c4 - 1));
+        double lo = 1e9, hi = 0, c4 = cost_ratio(m4, m4w, &by);
+        const char *lo_at = "", *hi_at = "";
+        for (int i = 0; i < count; i++) {
+            const char *label = st->scenes[scenes[i]].label;
+            const unsigned n = strcmp(label, "bucky-sharp-64") ? 256 : 64;
+            double c = cost_ratio(find_rays(st, label, 1, n, 1, VF_MODE_PREINT1),
+                                  find_rays(st, label, 0, n, 1, VF_MODE_PREINT1), &by);
+            if (c > 0 && c < lo)
+                lo = c, lo_at = label;
+            if (c > hi)
+                hi = c, hi_at = label;
+        }
+        fprintf(f, " and %.0f%% (%s) to %.0f%% (%s) more %s at one ray, %.0f%% on Marschner-Lobb at four: the core "
+                   "composites the pixels along the faces exactly rather than fast (core/composite_partial.c), so they "
+                   "are worth it only where a volume reaches its box.",
+                100 * (lo - 1), lo_at, 100 * (hi - 1), hi_at, by ? "instructions" : "time", 100 * (c4 - 1));
     }
-    if (m4 && m4k && m1 && m1k)
+    if (m4 && m4k && m1 && m1k) {
+        int by = 1;
+        double extra = m1k->instructions && m1->instructions ? (m1k->instructions - (double)m1->instructions) / 1e6 : 0;
         fprintf(f, " **1024 table entries** only together with rays: on Marschner-Lobb `sharp` (peaks 10 entries wide "
                    "at 256) they gain %.2f dB at R = 4 with partial slabs (%.2f against %.2f dB) but %.2f dB at R = 1, "
-                   "for %.1f MB more memory and a table rebuild of %.1f ms per frame (wall-clock) against %.1f ms.",
+                   "for %.1f MB more memory and",
                 m4k->vs_truth.psnr_db - m4->vs_truth.psnr_db, m4k->vs_truth.psnr_db, m4->vs_truth.psnr_db,
-                m1k->vs_truth.psnr_db - m1->vs_truth.psnr_db, (kb(m4k) - kb(m4)) / 1024, m4k->frame_tables_ms,
-                m4->frame_tables_ms);
+                m1k->vs_truth.psnr_db - m1->vs_truth.psnr_db, (kb(m4k) - kb(m4)) / 1024);
+        if (extra > 0)
+            fprintf(f, " %.0f M more instructions per frame for the table that every view rebuilds (%.1f against "
+                       "%.1f M at one ray).",
+                    extra, m1k->instructions / 1e6, m1->instructions / 1e6);
+        else
+            fprintf(f, " %.1f times the time per frame at one ray.", cost_ratio(m1k, m1, &by));
+    }
     fprintf(f, " The renderer's defaults stay as they are (one ray, whole slabs, 256 entries); a board file or the "
                "viewer would choose these, knowing its display and its frame budget.\n\n");
 }
@@ -863,6 +886,7 @@ static void recommend(FILE *f, const study_t *st)
     double chosen_truth = -1;
     double mcu_db[STUDY_MCU_CANDIDATES];
     size_t mcu_kb[STUDY_MCU_CANDIDATES];
+    uint64_t mcu_instr[STUDY_MCU_CANDIDATES];
     for (int k = 0; k < STUDY_MCU_CANDIDATES; k++) {
         const study_mcu_candidate_t *cand = &study_mcu_candidates[k];
         vf_params_t p = study_mcu_params(k);
@@ -879,6 +903,7 @@ static void recommend(FILE *f, const study_t *st)
                                          : find(st, "ml41-sharp", "table_size_nearest", text);
         double truth = own ? own->vs_truth.psnr_db : ml ? ml->vs_truth.psnr_db : 0;
         mcu_db[k] = own ? own->vs_truth.psnr_db : -1;
+        mcu_instr[k] = own ? own->instructions : 0;
         mcu_kb[k] = bytes;
         if (fits && truth > chosen_truth + 0.05) { /* a later (costlier) candidate must be measurably closer */
             chosen = k;
@@ -907,17 +932,21 @@ static void recommend(FILE *f, const study_t *st)
                 vf_mode_name(cand->mode), cand->table_size, cand->table_bits, cand->rays, cand->rays > 1 ? "s" : "",
                 cand->partial_slabs ? "partial" : "whole");
         /* what the new options would give and cost here: 2 rays (candidate 7 against 3), partial slabs (6 against 3) */
+        char ratio_text[64] = "";
+        if (mcu_instr[6] && mcu_instr[3])
+            snprintf(ratio_text, sizeof ratio_text, " and %.1f times the instructions per frame",
+                     (double)mcu_instr[6] / (double)mcu_instr[3]);
         if (mcu_db[3] >= 0 && mcu_db[6] >= 0 && mcu_db[7] >= 0)
             fprintf(f, " Two rays per voxel column would bring this scene %.2f dB closer to the truth (%.2f against "
                        "%.2f dB with 64 entries, 16 bits), because even at %.2f output pixels per voxel one ray per "
                        "voxel column leaves the warp to interpolate between rays a voxel apart; but the intermediate "
                        "image grows four times and the renderer needs %.0f KB (%.0f KB with 8-bit tables), more than "
                        "the %u KB left beside the frame and the stack: a board with %.0f KB of RAM could have it. Partial "
-                       "slabs change it by %.2f dB for %.1f KB more%s",
+                       "slabs change it by %.2f dB for %.1f KB more%s%s",
                     mcu_db[7] - mcu_db[3], mcu_db[7], mcu_db[3],
                     pixels_per_voxel(&st->scenes[scene_index(st, "bucky-sharp-64")]), mcu_kb[7] / 1024.0,
                     mcu_kb[8] / 1024.0, (MCU_RAM - 32 * 1024) / 1024, (mcu_kb[8] + 32 * 1024) / 1024.0,
-                    mcu_db[6] - mcu_db[3], ((double)mcu_kb[6] - (double)mcu_kb[3]) / 1024.0,
+                    mcu_db[6] - mcu_db[3], ((double)mcu_kb[6] - (double)mcu_kb[3]) / 1024.0, ratio_text,
                     fabs(mcu_db[6] - mcu_db[3]) < 0.2 ? ": nothing to gain on this scene, so off." : ".");
         fprintf(f, "\n\n");
     } else {
