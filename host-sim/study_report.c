@@ -1025,7 +1025,7 @@ static void claim_without_shared(FILE *f, const study_t *st, const claims_t *c, 
                    "from R = 4 on what is left is the slab integration itself.",
                 st->rays_floor[0].exact_db, st->rays_floor[STUDY_RAYS_STEPS - 1].exact_db);
     else
-        fprintf(f, " (This quick run has R = 8 and 16 only; the full study has every R.)");
+        fprintf(f, " (This quick run has R = 16 only; the full study has every R.)");
     fprintf(f, "\n\n");
     if (strip[0])
         fprintf(f, "   ![claim 1's configuration side by side](%s)\n\n   The same view with %u x %u rays per voxel "
