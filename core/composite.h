@@ -189,9 +189,11 @@ static inline void vfi_stream_init(run_stream_t *s, const uint16_t *p, const uin
                                    uint32_t step_shift)
 {
     s->p = p, s->end = end;
-    s->ou_up = sl->ou + (int32_t)(1u << step_shift) - 1;
-    s->shift = step_shift == 16 ? 0 : step_shift;
-    s->pos = step_shift == 16 ? sl->cu : 0;
+    if (step_shift == 16) { /* one ray per voxel: count in pixels from the slice's first */
+        s->shift = 0, s->pos = sl->cu, s->ou_up = 0;
+    } else {
+        s->shift = step_shift, s->pos = 0, s->ou_up = sl->ou + (int32_t)(1u << step_shift) - 1;
+    }
 }
 
 /* Start a merge of the runs of slice sl0's cell row (p0, e0) and, unless p1 is NULL, slice sl1's. */
