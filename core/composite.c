@@ -89,7 +89,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     job.bilinear = r->params.lookup == VF_LOOKUP_BILINEAR;
     job.sample_shift = r->params.sample_bits ? 32 - r->params.sample_bits : 0;
     job.inter_shift = 16 - r->params.intermediate_bits;
-    job.step = 65536u / rays;
+    job.step = VF_MAX_RAYS == 1 ? 65536u : 65536u / rays;
     job.step_shift = 16;
     while ((1u << job.step_shift) > job.step)
         job.step_shift--;
@@ -97,7 +97,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     job.plain = !job.bilinear && job.lookup.q15 && !job.lookup.lut_f && !job.sample_shift && !job.inter_shift &&
                 rays == 1;
     const vfi_runs_t *runs = &r->runs[f->k_axis];
-    const bool partial = r->params.partial_slabs;
+    const bool partial = VF_PARTIAL_SLABS && r->params.partial_slabs; /* constant 0 in builds without them */
     job.ni = l->ni;
     job.nj = l->nj;
     job.slab_q16 = f->slab_q16;

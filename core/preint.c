@@ -267,6 +267,11 @@ static inline void store_window(vfi_table_out_t out, bool q15, size_t up, size_t
     }
 }
 
+void vfi_store_entry(vfi_table_out_t out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a)
+{
+    vfi_store_q30(out, entry, r, g, b, a);
+}
+
 /* Out of line, so that store_window stays small enough to be inlined into the loops; the values one by one, so
  * that the window need not be in memory for the call. */
 static void store_pair_q30(vfi_table_out_t out, size_t up, size_t down, uint32_t r, uint32_t g, uint32_t b,

@@ -34,6 +34,10 @@ static inline uint16_t vfi_q30_to_grid(uint32_t v, uint32_t bits)
     return (uint16_t)((q * VFI_ONE_Q15 + levels / 2) / levels);
 }
 
+/* vfi_store_q30 out of line (preint.c), for the point table and the brute force in tables.c, whose speed does not
+ * matter: one copy of the rounding in a build for size. */
+void vfi_store_entry(vfi_table_out_t out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a);
+
 /* Entry `entry` of the table: r, g, b premultiplied and opacity a, Q.30. (Inline: as a function, its call from
  * preint.c's loops, taken for the 8-bit and grid formats only, made the default format's loop keep its runs in
  * fewer registers; 1.5% more instructions.) */

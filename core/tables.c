@@ -96,7 +96,7 @@ static vfi_seg_t point_seg(const vfi_classify_t *cls, uint32_t i, uint32_t slab_
 
 static inline void store(vfi_table_out_t out, size_t entry, const vfi_seg_t *s)
 {
-    vfi_store_q30(out, entry, s->r, s->g, s->b, s->a);
+    vfi_store_entry(out, entry, s->r, s->g, s->b, s->a);
 }
 
 void vfi_correction_lut(uint32_t rho_q16, uint16_t *f_q15, uint32_t *g_q16)
