@@ -25,7 +25,7 @@
 static void place_slice(const vf_renderer_t *r, uint32_t t, slice_place_t *p);
 static void faces_around(const row_job_t *job, int32_t v, int32_t lo, int32_t hi, int32_t inner_lo, int32_t inner_hi,
                          bool preclass);
-static inline const uint8_t *slice_row(const vf_renderer_t *r, const slice_place_t *sl, uint32_t step, int32_t v,
+static inline const uint8_t *slice_row(const slice_place_t *sl, uint32_t row_bytes, uint32_t step, int32_t v,
                                        uint32_t *j, uint32_t *fy);
 static unsigned char *align_up(unsigned char *p);
 
@@ -89,7 +89,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     job.bilinear = r->params.lookup == VF_LOOKUP_BILINEAR;
     job.sample_shift = r->params.sample_bits ? 32 - r->params.sample_bits : 0;
     job.inter_shift = 16 - r->params.intermediate_bits;
-    job.step = 65536u / rays;
+    job.step = VF_MAX_RAYS == 1 ? 65536u : 65536u / rays;
     job.step_shift = 16;
     while ((1u << job.step_shift) > job.step)
         job.step_shift--;
@@ -97,7 +97,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     job.plain = !job.bilinear && job.lookup.q15 && !job.lookup.lut_f && !job.sample_shift && !job.inter_shift &&
                 rays == 1;
     const vfi_runs_t *runs = &r->runs[f->k_axis];
-    const bool partial = r->params.partial_slabs;
+    const bool partial = VF_PARTIAL_SLABS && r->params.partial_slabs; /* constant 0 in builds without them */
     job.ni = l->ni;
     job.nj = l->nj;
     job.slab_q16 = f->slab_q16;
@@ -132,7 +132,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
             job.t = t;
             for (int32_t v = lo; v <= hi; v++) {
                 uint32_t j;
-                job.row_data = slice_row(r, sl, job.step, v, &j, &job.front_fy);
+                job.row_data = slice_row(sl, job.row, job.step, v, &j, &job.front_fy);
                 job.next = next + (size_t)(v - (int32_t)v0) * (width + 1);
                 job.pixels = r->intermediate + (size_t)v * width * 4;
                 const bool whole_row = v >= whole.v_lo && v <= whole.v_hi && whole.u_lo <= whole.u_hi;
@@ -180,8 +180,8 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
             if (!whole_row)
                 continue;
             uint32_t j_f, j_b;
-            job.row_data = slice_row(r, front, job.step, v, &j_f, &job.front_fy);
-            job.back_row_data = slice_row(r, back, job.step, v, &j_b, &job.back_fy);
+            job.row_data = slice_row(front, job.row, job.step, v, &j_f, &job.front_fy);
+            job.back_row_data = slice_row(back, job.row, job.step, v, &j_b, &job.back_fy);
             const uint16_t *end_f, *p_f = vfi_runs_row(runs, kc, j_f, &end_f);
             const uint16_t *end_b, *p_b = vfi_runs_row(runs, kc, j_b, &end_b);
             run_merge_t m;
@@ -242,13 +242,13 @@ static void faces_around(const row_job_t *job, int32_t v, int32_t lo, int32_t hi
 }
 
 /* The slice row that intermediate row v (inside the slice) samples, its index j and fraction fy to the next. */
-static inline const uint8_t *slice_row(const vf_renderer_t *r, const slice_place_t *sl, uint32_t step, int32_t v,
-                                uint32_t *j, uint32_t *fy)
+static inline const uint8_t *slice_row(const slice_place_t *sl, uint32_t row_bytes, uint32_t step, int32_t v,
+                                       uint32_t *j, uint32_t *fy)
 {
     uint32_t y = (uint32_t)v * step - (uint32_t)sl->ov;
     *j = y >> 16;
     *fy = y & 0xFFFFu;
-    return sl->data + (size_t)*j * r->layout[r->factor.k_axis].row;
+    return sl->data + (size_t)*j * row_bytes;
 }
 
 static unsigned char *align_up(unsigned char *p)

@@ -95,10 +95,6 @@ void vfi_row_preint1(const row_job_t *job, run_merge_t *m);
 void vfi_faces_preint1(const row_job_t *job, int32_t v, uint32_t x, uint32_t y);
 void vfi_faces_order0(const row_job_t *job, int32_t v, uint32_t x, uint32_t y, bool preclass);
 
-/* Shared with composite_partial.c: a slab's and a slice sample's entry (any lookup, format, correction). */
-void vfi_segment_preint1(const row_job_t *job, uint32_t pos_f, uint32_t pos_b, uint32_t seg[4]);
-void vfi_segment_order0(const row_job_t *job, const uint8_t *p, uint32_t fx, uint32_t fy, bool preclass,
-                        uint32_t seg[4]);
 
 /* The bilinear sample between p (column i of a slice row) and q (the same column of the next row) with fractions
  * fx, fy (Q0.16), exactly, in Q8.32: lerps as a + (b - a) f, three multiplications. vfi_sample_at: q = p + row. */
@@ -155,6 +151,61 @@ static inline bool vfi_composite_segment(const row_job_t *job, uint16_t *px, con
     return opaque;
 }
 
+/* The 2D entry of a slab from its front and back table positions (any lookup, table format, correction). */
+static VF_ALWAYS_INLINE void vfi_segment_preint1(const row_job_t *job, uint32_t pos_f, uint32_t pos_b,
+                                                uint32_t seg[4])
+{
+    const vfi_lookup_ctx_t *c = &job->lookup;
+    const size_t n = c->n;
+    if (job->bilinear) {
+        uint32_t i, fi, j, fj, w[4], e[4][4];
+        vfi_split_position(c->n, pos_f, &i, &fi);
+        vfi_split_position(c->n, pos_b, &j, &fj);
+        vfi_weights(fi, fj, w);
+        vfi_fetch(c, i * n + j, e[0]);
+        vfi_fetch(c, (i + 1) * n + j, e[1]);
+        vfi_fetch(c, i * n + j + 1, e[2]);
+        vfi_fetch(c, (i + 1) * n + j + 1, e[3]);
+        for (int k = 0; k < 4; k++) /* at most 32768 * 65536 in all */
+            seg[k] = (e[0][k] * w[0] + e[1][k] * w[1] + e[2][k] * w[2] + e[3][k] * w[3] + 0x8000u) >> 16;
+    } else {
+        vfi_fetch(c, pos_f * n + pos_b, seg);
+    }
+    if (c->lut_f)
+        vfi_correct(c, seg);
+}
+
+/* A slice sample's entry (point), or the interpolation of its four voxels' entries (preclass): the sample at p with
+ * fractions fx, fy. */
+static VF_ALWAYS_INLINE void vfi_segment_order0(const row_job_t *job, const uint8_t *p, uint32_t fx, uint32_t fy,
+                                      bool preclass, uint32_t seg[4])
+{
+    const vfi_lookup_ctx_t *c = &job->lookup;
+    if (preclass) {
+        uint32_t e[4][4];
+        const uint16_t *entry = job->cls->entry_of_scalar;
+        vfi_fetch(c, entry[p[0]], e[0]);
+        vfi_fetch(c, entry[p[1]], e[1]);
+        vfi_fetch(c, entry[p[job->row]], e[2]);
+        vfi_fetch(c, entry[p[job->row + 1]], e[3]);
+        vfi_lerp(e[0], e[1], fx);
+        vfi_lerp(e[2], e[3], fx);
+        vfi_lerp(e[0], e[2], fy);
+        for (int k = 0; k < 4; k++)
+            seg[k] = e[0][k];
+    } else if (job->bilinear) {
+        uint32_t i, f, next_entry[4];
+        vfi_split_position(c->n, vfi_table_position(job, p, fx, fy), &i, &f);
+        vfi_fetch(c, i, seg);
+        vfi_fetch(c, i + 1, next_entry);
+        vfi_lerp(seg, next_entry, f);
+    } else {
+        vfi_fetch(c, vfi_table_position(job, p, fx, fy), seg);
+    }
+    if (c->lut_f)
+        vfi_correct(c, seg);
+}
+
 /* The first open pixel at or after u; halves the path it walked, so that runs of opaque pixels cost almost nothing
  * on the next slab. next[width] is always open. */
 static inline uint32_t vfi_next_open(uint16_t *next, uint32_t u)
@@ -189,9 +240,11 @@ static inline void vfi_stream_init(run_stream_t *s, const uint16_t *p, const uin
                                    uint32_t step_shift)
 {
     s->p = p, s->end = end;
-    s->ou_up = sl->ou + (int32_t)(1u << step_shift) - 1;
-    s->shift = step_shift == 16 ? 0 : step_shift;
-    s->pos = step_shift == 16 ? sl->cu : 0;
+    if (step_shift == 16) { /* one ray per voxel: count in pixels from the slice's first */
+        s->shift = 0, s->pos = sl->cu, s->ou_up = 0;
+    } else {
+        s->shift = step_shift, s->pos = 0, s->ou_up = sl->ou + (int32_t)(1u << step_shift) - 1;
+    }
 }
 
 /* Start a merge of the runs of slice sl0's cell row (p0, e0) and, unless p1 is NULL, slice sl1's. */

@@ -5,36 +5,6 @@
  */
 #include "composite.h"
 
-/* A slice sample's entry (point), or the interpolation of its four voxels' entries (preclass): the sample at p with
- * fractions fx, fy. */
-void vfi_segment_order0(const row_job_t *job, const uint8_t *p, uint32_t fx, uint32_t fy, bool preclass,
-                        uint32_t seg[4])
-{
-    const vfi_lookup_ctx_t *c = &job->lookup;
-    if (preclass) {
-        uint32_t e[4][4];
-        const uint16_t *entry = job->cls->entry_of_scalar;
-        vfi_fetch(c, entry[p[0]], e[0]);
-        vfi_fetch(c, entry[p[1]], e[1]);
-        vfi_fetch(c, entry[p[job->row]], e[2]);
-        vfi_fetch(c, entry[p[job->row + 1]], e[3]);
-        vfi_lerp(e[0], e[1], fx);
-        vfi_lerp(e[2], e[3], fx);
-        vfi_lerp(e[0], e[2], fy);
-        for (int k = 0; k < 4; k++)
-            seg[k] = e[0][k];
-    } else if (job->bilinear) {
-        uint32_t i, f, next_entry[4];
-        vfi_split_position(c->n, vfi_table_position(job, p, fx, fy), &i, &f);
-        vfi_fetch(c, i, seg);
-        vfi_fetch(c, i + 1, next_entry);
-        vfi_lerp(seg, next_entry, f);
-    } else {
-        vfi_fetch(c, vfi_table_position(job, p, fx, fy), seg);
-    }
-    if (c->lut_f)
-        vfi_correct(c, seg);
-}
 
 /* point with the default table and one ray per voxel column: the loop on its own, everything it reads in locals */
 static void row_point_plain(const row_job_t *job, run_merge_t *m)
@@ -59,13 +29,11 @@ static void row_point_plain(const row_job_t *job, run_merge_t *m)
     }
 }
 
-void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
+/* Any mode, lookup, table format, correction, precision study or number of rays. With one ray per voxel a pixel's
+ * column is u - cu at the slice's one fraction; with more each pixel has its own. */
+static VF_ALWAYS_INLINE void row_general(const row_job_t *job, run_merge_t *m, bool preclass, bool one_ray)
 {
     const slice_place_t *sl = job->front;
-    if (job->plain && !preclass) {
-        row_point_plain(job, m);
-        return;
-    }
     int32_t a, b;
     while (vfi_merge_next(m, &a, &b)) {
         a = a > job->clip_lo ? a : job->clip_lo;
@@ -73,11 +41,22 @@ void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
         if (a >= b)
             continue;
         for (uint32_t u = vfi_next_open(job->next, (uint32_t)a); u < (uint32_t)b; u = vfi_next_open(job->next, u + 1)) {
-            uint32_t fx, seg[4];
-            const uint32_t i = vfi_column(sl, job->step, u, &fx);
+            uint32_t fx = sl->fx, seg[4];
+            const uint32_t i = one_ray ? u - (uint32_t)sl->cu : vfi_column(sl, job->step, u, &fx);
             vfi_segment_order0(job, job->row_data + i, fx, job->front_fy, preclass, seg);
             if (vfi_composite_segment(job, job->pixels + (size_t)u * 4, seg))
                 job->next[u] = (uint16_t)(u + 1);
         }
     }
+}
+
+void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
+{
+    const bool one_ray = VF_MAX_RAYS == 1 || job->step == 65536; /* constant in one-ray builds */
+    if (job->plain && !preclass)
+        row_point_plain(job, m);
+    else if (one_ray)
+        preclass ? row_general(job, m, true, true) : row_general(job, m, false, true);
+    else
+        preclass ? row_general(job, m, true, false) : row_general(job, m, false, false);
 }

@@ -16,28 +16,6 @@
 #define MIN(a, b) ((a) < (b) ? (a) : (b))
 #define MAX(a, b) ((a) > (b) ? (a) : (b))
 
-/* The 2D entry of a slab from its front and back table positions (any lookup, table format, correction). */
-void vfi_segment_preint1(const row_job_t *job, uint32_t pos_f, uint32_t pos_b, uint32_t seg[4])
-{
-    const vfi_lookup_ctx_t *c = &job->lookup;
-    const size_t n = c->n;
-    if (job->bilinear) {
-        uint32_t i, fi, j, fj, w[4], e[4][4];
-        vfi_split_position(c->n, pos_f, &i, &fi);
-        vfi_split_position(c->n, pos_b, &j, &fj);
-        vfi_weights(fi, fj, w);
-        vfi_fetch(c, i * n + j, e[0]);
-        vfi_fetch(c, (i + 1) * n + j, e[1]);
-        vfi_fetch(c, i * n + j + 1, e[2]);
-        vfi_fetch(c, (i + 1) * n + j + 1, e[3]);
-        for (int k = 0; k < 4; k++) /* at most 32768 * 65536 in all */
-            seg[k] = (e[0][k] * w[0] + e[1][k] * w[1] + e[2][k] * w[2] + e[3][k] * w[3] + 0x8000u) >> 16;
-    } else {
-        vfi_fetch(c, pos_f * n + pos_b, seg);
-    }
-    if (c->lut_f)
-        vfi_correct(c, seg);
-}
 
 /* The arrays of one row of the plain path addressed by c = u - cu, the back slice's column of pixel u (the slice
  * buffer's rows have one element before column 0, for a front slice one column to the right of the back one). */
@@ -81,27 +59,37 @@ static VF_ALWAYS_INLINE void span_plain(const row_job_t *job, const row_arrays_t
 }
 
 /* Any lookup, table format, correction, precision study or number of rays: the open pixels of [x, y). Nearest
- * positions are kept times N in the buffer (the front entry's row in the 2D table), bilinear ones as they are. */
-static void span_general(const row_job_t *job, uint32_t x, uint32_t y, bool buffered)
+ * positions are kept times N in the buffer (the front entry's row in the 2D table), bilinear ones as they are.
+ * With one ray per voxel a pixel's column is u - cu at the slice's one fraction; with more each pixel has its own. */
+static VF_ALWAYS_INLINE void span_general_body(const row_job_t *job, uint32_t x, uint32_t y, bool buffered,
+                                               bool one_ray)
 {
     const slice_place_t *fr = job->front, *bk = job->back;
     const uint32_t n = job->lookup.n, scale = job->bilinear ? 1 : n;
     for (uint32_t u = vfi_next_open(job->next, x); u < y; u = vfi_next_open(job->next, u + 1)) {
-        uint32_t fx, pos_f;
+        uint32_t fx, i, pos_f;
         if (buffered) {
             pos_f = job->front_buf[u - (uint32_t)job->front_shift];
         } else {
-            const uint32_t i = vfi_column(fr, job->step, u, &fx);
-            pos_f = scale * vfi_table_position(job, job->row_data + i, fx, job->front_fy);
+            i = one_ray ? u - (uint32_t)fr->cu : vfi_column(fr, job->step, u, &fx);
+            pos_f = scale * vfi_table_position(job, job->row_data + i, one_ray ? fr->fx : fx, job->front_fy);
         }
-        const uint32_t i = vfi_column(bk, job->step, u, &fx);
-        uint32_t pos_b = vfi_table_position(job, job->back_row_data + i, fx, job->back_fy);
+        i = one_ray ? u - (uint32_t)bk->cu : vfi_column(bk, job->step, u, &fx);
+        uint32_t pos_b = vfi_table_position(job, job->back_row_data + i, one_ray ? bk->fx : fx, job->back_fy);
         job->back_buf[u - (uint32_t)job->back_shift] = pos_b * scale;
         uint32_t seg[4];
         vfi_segment_preint1(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg);
         if (vfi_composite_segment(job, job->pixels + (size_t)u * 4, seg))
             job->next[u] = (uint16_t)(u + 1);
     }
+}
+
+static void span_general(const row_job_t *job, uint32_t x, uint32_t y, bool buffered)
+{
+    if (VF_MAX_RAYS == 1 || job->step == 65536) /* constant in one-ray builds */
+        buffered ? span_general_body(job, x, y, true, true) : span_general_body(job, x, y, false, true);
+    else
+        buffered ? span_general_body(job, x, y, true, false) : span_general_body(job, x, y, false, false);
 }
 
 /* A row: its visible runs, each cut into spans whose fronts are all buffered or all sampled here. Specialised below

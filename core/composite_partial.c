@@ -14,6 +14,8 @@
 #include "composite.h"
 #include "fixmath.h"
 
+#if VF_PARTIAL_SLABS
+
 #define ONE_Q16 65536
 #define MIN(a, b) ((a) < (b) ? (a) : (b))
 #define MAX(a, b) ((a) > (b) ? (a) : (b))
@@ -273,3 +275,9 @@ void vfi_faces_order0(const row_job_t *job, int32_t v, uint32_t x, uint32_t y, b
             job->next[u] = (uint16_t)(u + 1);
     }
 }
+
+#else
+
+typedef int vfi_no_partial_slabs; /* an ISO C translation unit declares something */
+
+#endif

@@ -144,8 +144,12 @@ vf_status_t vf_factor_rays(vf_factor_t *f, uint32_t rays)
 {
     if (!f)
         return VF_ERR_NULL;
-    if (f->rays != 1 || (rays != 1 && rays != 2 && rays != 4 && rays != 8 && rays != 16) || rays > VF_MAX_RAYS)
+    if (f->rays != 1 || (rays != 1 && rays != 2 && rays != 4 && rays != 8 && rays != 16))
         return VF_ERR_ARG;
+    if (rays > VF_MAX_RAYS)
+        return VF_ERR_UNSUPPORTED;
+    if (rays == 1) /* nothing to scale; and a one-ray build (vf_config.h) keeps none of what follows */
+        return VF_OK;
     if ((uint64_t)rays * (f->int_w - 1) + 1 > VF_MAX_INTERMEDIATE ||
         (uint64_t)rays * (f->int_h - 1) + 1 > VF_MAX_INTERMEDIATE)
         return VF_ERR_INTERMEDIATE;

@@ -226,16 +226,16 @@ static vf_status_t check_params(const vf_params_t *p)
     if ((unsigned)p->mode >= VF_MODE_COUNT || (unsigned)p->lookup >= VF_LOOKUP_COUNT ||
         (unsigned)p->correction >= VF_CORRECTION_COUNT || (unsigned)p->buffer >= VF_BUFFER_COUNT ||
         (p->table_bits != 8 && p->table_bits != 10 && p->table_bits != 12 && p->table_bits != 16) ||
-        (p->rays != 1 && p->rays != 2 && p->rays != 4 && p->rays != 8 && p->rays != 16) || p->rays > VF_MAX_RAYS ||
+        (p->rays != 1 && p->rays != 2 && p->rays != 4 && p->rays != 8 && p->rays != 16) ||
         (p->sample_bits != 0 && (p->sample_bits < 4 || p->sample_bits > 16)) ||
         (p->intermediate_bits != 8 && p->intermediate_bits != 12 && p->intermediate_bits != 16) ||
         p->warp_bits < 4 || p->warp_bits > 16)
         return VF_ERR_ARG;
     if (p->table_size < VF_MIN_TABLE || p->table_size > VF_MAX_TABLE)
         return VF_ERR_ARG;
-    /* the lut's Q1.15 knots leave too few bits of a nearly opaque slab's transmittance for a part of it
-     * (docs/algorithm.md, section 4c) */
-    if (p->partial_slabs && p->correction == VF_CORRECTION_LUT)
+    /* options this build leaves out (vf_config.h); and partial slabs not with the lut, whose Q1.15 knots leave
+     * too few bits of a nearly opaque slab's transmittance for a part of it (docs/algorithm.md, section 4c) */
+    if (p->rays > VF_MAX_RAYS || (p->partial_slabs && (!VF_PARTIAL_SLABS || p->correction == VF_CORRECTION_LUT)))
         return VF_ERR_UNSUPPORTED;
     return VF_OK;
 }

@@ -13,8 +13,7 @@ static const char *const status_texts[VF_STATUS_COUNT] = {
     [VF_ERR_STATE] = "called out of order (set a window and a transfer function, then begin a frame)",
     [VF_ERR_IMAGE] = "the output image is empty, has an unknown format, a short stride or the wrong size",
     [VF_ERR_UNSUPPORTED] = "not supported by this build",
-    [VF_ERR_INTERMEDIATE] = "with this many rays per voxel the intermediate image would exceed VF_MAX_INTERMEDIATE "
-                            "pixels a side",
+    [VF_ERR_INTERMEDIATE] = "too many rays: the intermediate image would exceed VF_MAX_INTERMEDIATE pixels a side",
 };
 
 const char *vf_status_text(vf_status_t status)

@@ -33,17 +33,39 @@ typedef struct vfi_lookup_ctx {
  * a = k / 1024, k = 0..1024 (docs/algorithm.md, section 4b). */
 void vfi_correction_lut(uint32_t rho_q16, uint16_t *f_q15, uint32_t *g_q16);
 
-/* A segment's opacity and premultiplied colour while tables are built, Q.30. */
+/* A segment's opacity and premultiplied colour while the point table and the brute force are built, Q.30. */
 typedef struct vfi_seg {
     uint32_t r, g, b, a;
 } vfi_seg_t;
 
-/* Scratch the builders need besides their output, for n entries: interval values for one piece length, and for
- * the incremental builder the list of the intervals that can be seen at all (visible) and one block's suffix
- * composites, front to back (suffix) and back to front (back_suffix); its prefixes live in registers. */
+/* An interval while the incremental builder runs: its transmittance for pieces of one length (Q.30), its mean
+ * extinction (Q.24) and colour weights (classify.h, Q.30), and two per-table constants of preint.c's steps in
+ * Q.60 (preint.c says what they are), side by side so that a step reads one record. */
+typedef struct vfi_interval {
+    uint32_t t, mean_q24;
+    uint32_t w[3];
+    int64_t step[3];
+    uint64_t w_q60[3];
+} vfi_interval_t;
+
+/* A block's suffix as the incremental builder keeps it for the joins: its colour seen from the front in Q.60
+ * (with half an LSB of Q1.15 added: preint.c), from the back in Q.30, and its transmittance. */
+typedef struct vfi_suffix {
+    uint64_t front_q60[3];
+    uint32_t back[3], t;
+} vfi_suffix_t;
+
+/* Scratch the incremental builder needs besides its output, for n entries (the brute force needs none): the
+ * intervals (n + 1 records: interval m at m + 1, between a colourless record before the first and one after the
+ * last); the intervals that can be seen at all (visible, ascending) and, for each m = 0..n-1, where the first
+ * visible interval at or above m is listed (first_visible); one block's suffixes. About 116 bytes an entry (on a
+ * 64-bit host; 30 KB for 256 entries), the price of reading the steps' constants where the old builder worked
+ * them out (50 bytes an entry). */
 typedef struct vfi_table_scratch {
-    vfi_seg_t *interval, *suffix, *back_suffix; /* [n - 1] each */
-    uint16_t *visible;                          /* [n] */
+    vfi_interval_t *interval; /* [n + 1] */
+    vfi_suffix_t *suffix;     /* [n - 1] */
+    uint16_t *visible;        /* [n - 1] */
+    uint16_t *first_visible;  /* [n] */
 } vfi_table_scratch_t;
 
 size_t vfi_table_scratch_bytes(uint32_t n);
@@ -51,13 +73,15 @@ vf_status_t vfi_table_scratch_alloc(vfi_table_scratch_t *scratch, uint32_t n, vf
 
 /* Order 0: entry i = (c_i a_i, a_i), a_i = 1 - exp(-tau_i d). n entries. */
 void vfi_point_table(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out_t out);
+/* The same entries at i * stride (the diagonal of a 2D table: stride n + 1). */
+void vfi_point_entries(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out_t out, size_t stride);
 
 /* Order 1, n x n entries. Both give the table of docs/algorithm.md section 2; they differ in how they group the
  * compositing of intervals, so in rounding (at most 1 LSB of Q1.15 apart).
  * Brute force, O(N^3): every entry composites its |b - f| intervals one after another. The oracle.
- * Incremental subrange integration (Lum, Wilson and Ma 2004), O(N^2): along a diagonal |b - f| = r every
- * interval has length d / r; in blocks of r intervals, each entry joins a suffix of one block (kept in scratch)
- * with a prefix of the next (grown one interval an entry). */
+ * Incremental subrange integration (Lum, Wilson and Ma 2004), O(N^2), in preint.c: along a diagonal |b - f| = r
+ * every interval has length d / r; in blocks of r intervals, each entry joins a suffix of one block (kept in
+ * scratch) with a prefix of the next (grown one interval an entry). */
 void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
                                  vfi_table_out_t out);
 void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,

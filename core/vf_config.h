@@ -31,10 +31,17 @@
 #define VF_MAX_ANISOTROPY 64
 #endif
 
-/* Most rays per voxel column (vf_params_t.rays), and the largest side of an intermediate image: skip links
- * and run positions are 16-bit. */
+/* Most rays per voxel column (vf_params_t.rays: 1, 2, 4, 8 or 16; a build for a microcontroller may keep only
+ * 1, which drops the per-pixel sample positions), and the largest side of an intermediate image: skip links
+ * and run positions are 16-bit. A renderer asked for more rays than the build has gets VF_ERR_UNSUPPORTED. */
 #ifndef VF_MAX_RAYS
 #define VF_MAX_RAYS 16
+#endif
+
+/* Partial slabs at the volume's side faces (vf_params_t.partial_slabs, composite_partial.c, about 3.5 KB of
+ * Cortex-M4 code): 0 leaves them out, and a renderer asked for them gets VF_ERR_UNSUPPORTED. */
+#ifndef VF_PARTIAL_SLABS
+#define VF_PARTIAL_SLABS 1
 #endif
 #ifndef VF_MAX_INTERMEDIATE
 #define VF_MAX_INTERMEDIATE 65535

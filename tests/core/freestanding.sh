@@ -30,6 +30,9 @@ build_lib() { # compiler, extra flags, output
 }
 
 check "x86-64 links with -nostdlib" build_lib gcc "" "$out/libvolfix-host.so"
+# the smallest configuration of vf_config.h (a microcontroller's: no partial slabs, one ray per voxel column)
+check "x86-64 without partial slabs and with one ray links with -nostdlib" \
+    build_lib gcc "-DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1" "$out/libvolfix-small.so"
 if command -v aarch64-linux-gnu-gcc >/dev/null; then
     check "aarch64 -mgeneral-regs-only (no floating point) links with -nostdlib" \
         build_lib aarch64-linux-gnu-gcc "-mgeneral-regs-only" "$out/libvolfix-a64.so"

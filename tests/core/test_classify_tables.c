@@ -9,19 +9,24 @@
  *   colour_i            within 1e-9
  *   point table         within 1 LSB of Q1.15 of round(32768 x) (measured 1)
  *   brute force         within 1 LSB of Q1.15 (measured 1, at 0.13% of the values; 99.87% exact)
- *   incremental         within 1 LSB of the brute force and of the spec (measured 1 and 1)
+ *   incremental         within 1 LSB of the brute force and of the spec (measured 1 and 1); in the 8-bit and
+ *                       the 10- and 12-bit grid formats within one level of the brute force's (measured 0, 0, 8)
  *   8-bit tables        within 0.51 of 255 x
+ *   no clamp            1.0 + VFI_STORE_SLACK_Q30 rounds to 1.0 in every format; an opaque white 1024-entry
+ *                       table stays at most 1.0 everywhere (table_store.h, preint.c)
  *   lut correction      F within 1 LSB of Q1.15, G within 2^-12 relative
  * and the exact properties: diagonal == point table, invisible ranges exactly zero, exact entry rounding.
  */
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "arena.h"
 #include "check.h"
 #include "classify.h"
+#include "table_store.h"
 #include "tables.h"
 
 static uint64_t rng_state = 0xB7E151628AED2A6Bu;
@@ -38,7 +43,7 @@ static uint32_t rnd(uint32_t n)
 }
 
 /* Room for classification, scratch and tables of up to 1024 entries (the 2D table: 8 MiB). */
-static _Alignas(16) unsigned char arena_buf[1 << 17];
+static _Alignas(16) unsigned char arena_buf[1 << 18];
 static uint16_t table2d[1024 * 1024 * 4];
 static uint16_t table1d[1024 * 4];
 
@@ -671,6 +676,98 @@ static void tables_8bit(void)
     }
 }
 
+/* The incremental builder against the oracle in the other formats (vfi_table_out_t): 8 bits, and the grid of
+ * grid_bits 10 and 12 that the precision studies use. Every entry within one level of the oracle's (the two round
+ * the same Q.30 values but for the grouping), the diagonal and the invisible ranges exactly the oracle's. */
+static uint16_t oracle_grid[64 * 64 * 4], table_grid[64 * 64 * 4];
+static uint8_t oracle_u8[64 * 64 * 4], table_u8[64 * 64 * 4];
+
+static void tables_incremental_formats(void)
+{
+    const uint32_t sizes[] = {2, 3, 17, 64};
+    const double lengths[] = {1.0, 0.37, 1.7320508, 20.5};
+    int worst[3] = {0, 0, 0};
+    for (size_t sn = 0; sn < sizeof sizes / sizeof sizes[0]; sn++) {
+        uint32_t n = sizes[sn];
+        fixture_t fx;
+        CHECK(fixture_init(&fx, n));
+        for (int t = 0; t < 8; t++) {
+            vf_tf_t tf = random_tf();
+            CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
+            for (size_t ln = 0; ln < sizeof lengths / sizeof lengths[0]; ln++) {
+                uint32_t slab_q16 = (uint32_t)lround(lengths[ln] * 65536);
+                for (int format = 0; format < 3; format++) {
+                    const uint32_t bits = format == 1 ? 10 : 12;
+                    /* one level apart: 1 of 255, or 32768 / (2^bits - 1) rounded up in Q1.15 */
+                    const int level = format == 0 ? 1 : (int)((32768 + (1u << bits) - 2) / ((1u << bits) - 1));
+                    vfi_table_out_t want = {NULL, oracle_u8, 0}, got = {NULL, table_u8, 0};
+                    if (format > 0) {
+                        want = (vfi_table_out_t){oracle_grid, NULL, bits};
+                        got = (vfi_table_out_t){table_grid, NULL, bits};
+                    }
+                    vfi_preint_table_bruteforce(&fx.cls, slab_q16, &fx.scratch, want);
+                    vfi_preint_table_incremental(&fx.cls, slab_q16, &fx.scratch, got);
+                    for (size_t e = 0; e < (size_t)n * n * 4; e++) {
+                        int w = format == 0 ? oracle_u8[e] : oracle_grid[e];
+                        int g = format == 0 ? table_u8[e] : table_grid[e];
+                        size_t f = e / 4 / n, b = e / 4 % n;
+                        worst[format] = abs(g - w) > worst[format] ? abs(g - w) : worst[format];
+                        CHECK_MSG(abs(g - w) <= level && (f != b || g == w) && (w != 0 || g == 0),
+                                  "N %u d %g format %d entry (%zu, %zu) channel %zu: incremental %d, brute force %d",
+                                  n, lengths[ln], format, f, b, e % 4, g, w);
+                        if (check_failed)
+                            return;
+                    }
+                }
+            }
+        }
+    }
+    if (getenv("VOLFIX_SHOW"))
+        printf("# incremental against brute force: u8 %d, grid 10 %d, grid 12 %d\n", worst[0], worst[1], worst[2]);
+    CHECK(worst[0] <= 1 && worst[1] <= 33 && worst[2] <= 9);
+}
+
+/* No clamp where the builders round (table_store.h). Each conversion maps 1.0 + VFI_STORE_SLACK_Q30 to exactly
+ * 1.0 of its format, and the q15 one would give more just above it (so the slack is the real limit, not a guess).
+ * Then the builders at the extreme the bounds of tables.c and preint.c are about: an opaque white transfer
+ * function (C = a everywhere), 1024 entries (windows of up to 1023 intervals), short and long slabs; every value
+ * at most 1.0, and an 8-bit table all 255 where the opacity rounds to 1 (a value over 1.0 would wrap to 0). */
+static uint8_t table1024_u8[1024 * 1024 * 4];
+
+static void tables_no_clamp(void)
+{
+    const uint32_t top = (UINT32_C(1) << 30) + VFI_STORE_SLACK_Q30;
+    CHECK_EQ(vfi_q30_to_q15(top), VFI_ONE_Q15);
+    CHECK_EQ(vfi_q30_to_q15(top + 1), VFI_ONE_Q15 + 1);
+    CHECK_EQ(vfi_q30_to_u8(top), 255);
+    CHECK_EQ(vfi_q30_to_grid(top, 10), VFI_ONE_Q15);
+    CHECK_EQ(vfi_q30_to_grid(top, 12), VFI_ONE_Q15);
+
+    fixture_t fx;
+    CHECK(fixture_init(&fx, 1024));
+    vf_tf_point_t white = {0, 65535, 65535, 65535, 65535};
+    vf_tf_t tf = {&white, 1};
+    CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
+    const uint32_t slabs[] = {65536 / 1024, 65536, 3 * 65536, UINT32_C(128) << 16};
+    for (size_t sl = 0; sl < sizeof slabs / sizeof slabs[0]; sl++) {
+        vfi_preint_table_incremental(&fx.cls, slabs[sl], &fx.scratch, q15_out(table2d));
+        vfi_preint_table_incremental(&fx.cls, slabs[sl], &fx.scratch, (vfi_table_out_t){NULL, table1024_u8, 0});
+        for (size_t e = 0; e < (size_t)1024 * 1024; e++) {
+            const uint16_t *q = table2d + e * 4;
+            const uint8_t *u = table1024_u8 + e * 4;
+            CHECK_MSG(q[0] <= VFI_ONE_Q15 && q[1] <= VFI_ONE_Q15 && q[2] <= VFI_ONE_Q15 && q[3] <= VFI_ONE_Q15,
+                      "slab %u entry (%zu, %zu): %u %u %u %u", slabs[sl], e / 1024, e % 1024, q[0], q[1], q[2], q[3]);
+            /* white: the colour is the opacity, to a level */
+            CHECK(abs((int)q[0] - (int)q[3]) <= 1 && abs((int)u[0] - (int)u[3]) <= 1);
+            if (q[3] == VFI_ONE_Q15)
+                CHECK_MSG(u[0] == 255 && u[1] == 255 && u[2] == 255 && u[3] == 255, "slab %u entry (%zu, %zu): u8 %u %u %u %u",
+                          slabs[sl], e / 1024, e % 1024, u[0], u[1], u[2], u[3]);
+            if (check_failed)
+                return;
+        }
+    }
+}
+
 /* The entries a sample between two 8-bit scalars can touch: exactly its nearest entries for nearest lookup; for
  * bilinear, which reads entries i = min(floor(x), N - 2) and i + 1 with weights 1 - f and f, every entry read
  * with a weight above zero. */
@@ -793,5 +890,6 @@ CHECK_CASES({"table_api_arguments", table_api_arguments}, {"classify_random", cl
             {"tables_random", tables_random}, {"tables_full_size", tables_full_size},
             {"tables_constant_tf", tables_constant_tf}, {"tables_invisible", tables_invisible},
             {"tables_incremental", tables_incremental}, {"tables_8bit", tables_8bit},
+            {"tables_incremental_formats", tables_incremental_formats}, {"tables_no_clamp", tables_no_clamp},
             {"scalar_entry_ranges", scalar_entry_ranges}, {"correction_lut", correction_lut});
 CHECK_RUN("core/classify_tables")

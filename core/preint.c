@@ -1,0 +1,482 @@
+/*
+ * preint.c: the pre-integrated table in O(N^2) by incremental subrange integration (Lum, Wilson and Ma 2004;
+ * docs/algorithm.md section 2, tables.h), integer only. Its oracle is the brute force in tables.c.
+ *
+ * Along a diagonal |b - f| = r every interval is crossed by a piece of length d / r. The window of intervals
+ * f .. f+r-1 gives entry (f, f+r), composited front to back, and entry (f+r, f), back to front. The windows are
+ * cut into blocks of r: a window is a suffix of its block (kept in scratch) joined with a prefix of the next
+ * (grown one interval a window, in registers).
+ *
+ * A run of intervals is held with its transmittance t = 1 - opacity, the same seen from either end, and its
+ * premultiplied colour seen from each end. An interval v (transmittance t_v, colour weight w, so colour
+ * C_v = (1 - t_v) w: docs/algorithm.md) joins a run x
+ *   at the end the colour is seen from:  C' = w + t_v (C - w)       (v in front of x)
+ *   at the far end:                      C' = C + w (t - t')        (x lets t - t' of v's opacity through)
+ * with t' = t t_v either way: one product a channel and direction, rounded once, and C_v is never formed. A join,
+ * x in front of y, C = C_x + t_x C_y and t = t_x t_y, is kept exact in Q.60 until the entry is rounded.
+ *
+ * Where every interval of a block is visible (block_dense, the common case) the growing end's colour is carried
+ * as C - w_next in Q.60 before its rounding, w_next the weight of the interval that comes next: then v in front is
+ * one multiply-add with a per-table constant, (C' - w_next') 2^30 = t_v (C - w) 2^30 + (w - w_next') 2^30, and the
+ * joins take the colour before that rounding. The same numbers as the first line above, but for the half LSB.
+ *
+ * The bound table_store.h needs: no value exceeds 1.0 by r LSB of Q.30 or more (r <= 1023). Call e = C + t - 1 a
+ * run's excess, in LSB. The empty run (C = 0, t = 1) has e = 0. v at the seen end adds at most 1: C' + t' <=
+ * t_v (C + t) + (1 - t_v) w + 1 <= 1 + e + 1 (two roundings, w <= 1; half of that before C' is rounded), and less
+ * than 1 when x is empty (t' = t_v exactly). v at the far end adds nothing: w (t - t') rounds to at most the
+ * integer t - t'. A join adds the two: C + t = C_x + t_x (C_y + t_y) <= 1 + e_x + e_y. A window's front colour
+ * joins a suffix grown at its seen end with a prefix grown at its far end (e <= 0), its back colour the other way
+ * round, so e < r. Both directions use the one t, which the bounds allow.
+ */
+#include "arena.h"
+#include "fixmath.h"
+#include "table_store.h"
+#include "tables.h"
+
+#define ONE_Q30 (UINT32_C(1) << 30)
+#define HALF_Q30 (UINT64_C(1) << 29)
+#define ONE_Q60 (UINT64_C(1) << 60)
+#define HALF_Q15_IN_Q60 (UINT64_C(1) << 44) /* half an LSB of Q1.15, in Q.60 */
+
+/* One diagonal while it is built. */
+typedef struct diagonal {
+    const vfi_interval_t *iv; /* interval m at iv + m, m = -1 .. n - 1 (the first and last colourless) */
+    const uint16_t *visible, *first_visible;
+    vfi_suffix_t *suf;        /* a block's suffixes, by position in visible */
+    uint32_t n, r;            /* entries a table axis; intervals a window */
+    vfi_table_out_t out;
+} diagonal_t;
+
+/* A run in Q.30 (block_sparse). */
+typedef struct pair {
+    uint32_t r, g, b, br, bg, bb, t;
+} pair_t;
+
+/* A run as block_dense grows it at one end: the colour seen from that end as x = (C - w_next) 2^30 + 2^29 in
+ * Q.60, C before its rounding (so x >> 30 is C - w_next rounded); the colour seen from the other end exactly, as
+ * c = C 2^30 + 2^29 in Q.60 (a sum of products w dt: so c >> 30 is C rounded). */
+typedef struct run {
+    int64_t xr, xg, xb;
+    uint64_t cr, cg, cb;
+    uint32_t t;
+} run_t;
+
+/* A window's two entries before rounding: colour seen from the front and from the back, and opacity, Q.60 with
+ * half an LSB of Q1.15 added. */
+typedef struct window {
+    uint64_t r, g, b, br, bg, bb, a;
+} window_t;
+
+static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
+static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi);
+static void store_pair_q30(vfi_table_out_t out, size_t up, size_t down, uint32_t r, uint32_t g, uint32_t b,
+                           uint32_t br, uint32_t bg, uint32_t bb, uint32_t a);
+static uint32_t list_intervals(const vfi_classify_t *cls, const vfi_table_scratch_t *scratch);
+static void transmittances(const vfi_table_scratch_t *scratch, uint32_t visible_count, uint32_t count,
+                           uint64_t length_q28);
+static uint64_t piece_length_q28(uint32_t slab_q16, uint32_t r);
+
+size_t vfi_table_scratch_bytes(uint32_t n)
+{
+    return vfi_arena_block(sizeof(vfi_interval_t) * (n + 1)) + vfi_arena_block(sizeof(vfi_suffix_t) * (n - 1)) +
+           vfi_arena_block(sizeof(uint16_t) * (n - 1)) + vfi_arena_block(sizeof(uint16_t) * n);
+}
+
+vf_status_t vfi_table_scratch_alloc(vfi_table_scratch_t *scratch, uint32_t n, vf_arena_t *arena)
+{
+    scratch->interval = vfi_arena_alloc(arena, sizeof(vfi_interval_t) * (n + 1));
+    scratch->suffix = vfi_arena_alloc(arena, sizeof(vfi_suffix_t) * (n - 1));
+    scratch->visible = vfi_arena_alloc(arena, sizeof(uint16_t) * (n - 1));
+    scratch->first_visible = vfi_arena_alloc(arena, sizeof(uint16_t) * n);
+    return scratch->interval && scratch->suffix && scratch->visible && scratch->first_visible ? VF_OK
+                                                                                            : VF_ERR_NOMEM;
+}
+
+void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
+                                  vfi_table_out_t out)
+{
+    const uint32_t n = cls->n, count = n - 1; /* count intervals */
+    vfi_point_entries(cls, slab_q16, out, n + 1); /* the diagonal */
+    const uint32_t visible_count = list_intervals(cls, scratch);
+    const uint16_t *first_visible = scratch->first_visible;
+    diagonal_t d;
+    d.iv = scratch->interval + 1;
+    d.visible = scratch->visible;
+    d.first_visible = first_visible;
+    d.suf = scratch->suffix;
+    d.n = n;
+    d.out = out;
+    for (uint32_t r = 1; r < n; r++) {
+        transmittances(scratch, visible_count, count, piece_length_q28(slab_q16, r));
+        d.r = r;
+        /* The windows f .. f+r-1 start at f = 0 .. count - r; the block s0 .. s0+r-1 holds the starts s0 .. end,
+         * and its visible intervals are listed at k_lo .. k_hi - 1. */
+        for (uint32_t s0 = 0; s0 + r <= count; s0 += r) {
+            const uint32_t end = s0 + r - 1 < count - r ? s0 + r - 1 : count - r;
+            const uint32_t k_lo = first_visible[s0], k_hi = first_visible[s0 + r];
+            /* the prefixes add intervals s0+r .. end+r-1: when those and the block are all visible, no entry
+             * repeats the last one and the suffix of f is listed at k_lo + f - s0 */
+            if (k_hi - k_lo == r && first_visible[end + r] - k_hi == end - s0)
+                block_dense(&d, s0, end, k_lo);
+            else
+                block_sparse(&d, s0, end, k_lo, k_hi);
+        }
+    }
+}
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* Runs of intervals (the header comment gives the arithmetic and its bound). */
+
+static inline uint32_t mul_q30(uint32_t a, uint32_t b)
+{
+    return (uint32_t)(((uint64_t)a * b + HALF_Q30) >> 30);
+}
+
+/* Colour c with an interval of weight w behind it, of which the run lets dt of opacity through: c + w dt. */
+static inline uint32_t in_front(uint32_t c, uint32_t w, uint32_t dt)
+{
+    return c + (uint32_t)(((uint64_t)w * dt + HALF_Q30) >> 30);
+}
+
+/* Colour c seen through an interval of transmittance t_v and weight w in front of it: w + t_v (c - w). Signed:
+ * the shift is arithmetic, as vfi_sincos's products rely on too. */
+static inline uint32_t behind(uint32_t t_v, uint32_t c, uint32_t w)
+{
+    return (uint32_t)((int64_t)w + (((int64_t)t_v * ((int64_t)c - (int64_t)w) + (int64_t)HALF_Q30) >> 30));
+}
+
+/* Interval v joins run x at its front (block_sparse). */
+static inline void pair_add_front(pair_t *x, const vfi_interval_t *v)
+{
+    const uint32_t t = mul_q30(x->t, v->t), dt = x->t - t;
+    x->r = behind(v->t, x->r, v->w[0]);
+    x->g = behind(v->t, x->g, v->w[1]);
+    x->b = behind(v->t, x->b, v->w[2]);
+    x->br = in_front(x->br, v->w[0], dt);
+    x->bg = in_front(x->bg, v->w[1], dt);
+    x->bb = in_front(x->bb, v->w[2], dt);
+    x->t = t;
+}
+
+/* Interval v joins run x at its back (block_sparse). */
+static inline void pair_add_back(pair_t *x, const vfi_interval_t *v)
+{
+    const uint32_t t = mul_q30(x->t, v->t), dt = x->t - t;
+    x->r = in_front(x->r, v->w[0], dt);
+    x->g = in_front(x->g, v->w[1], dt);
+    x->b = in_front(x->b, v->w[2], dt);
+    x->br = behind(v->t, x->br, v->w[0]);
+    x->bg = behind(v->t, x->bg, v->w[1]);
+    x->bb = behind(v->t, x->bb, v->w[2]);
+    x->t = t;
+}
+
+static inline pair_t empty_pair(void)
+{
+    pair_t x;
+    x.r = x.g = x.b = x.br = x.bg = x.bb = 0; /* field by field: a zero aggregate can compile to a memset call */
+    x.t = ONE_Q30;
+    return x;
+}
+
+/* The empty run, with interval v next: x = (0 - w) 2^30 + 2^29. */
+static inline run_t empty_run(const vfi_interval_t *v)
+{
+    run_t x;
+    x.xr = (int64_t)HALF_Q30 - ((int64_t)v->w[0] << 30);
+    x.xg = (int64_t)HALF_Q30 - ((int64_t)v->w[1] << 30);
+    x.xb = (int64_t)HALF_Q30 - ((int64_t)v->w[2] << 30);
+    x.cr = x.cg = x.cb = HALF_Q30;
+    x.t = ONE_Q30;
+    return x;
+}
+
+/* Interval v joins run x at its front; v - 1 comes next: x' = t_v (x >> 30) + v->step, step = (w - w_before) 2^30
+ * + 2^29 (list_intervals). */
+static inline void run_add_front(run_t *x, const vfi_interval_t *v)
+{
+    const uint32_t t = mul_q30(x->t, v->t), dt = x->t - t;
+    x->xr = (int64_t)v->t * (x->xr >> 30) + v->step[0];
+    x->xg = (int64_t)v->t * (x->xg >> 30) + v->step[1];
+    x->xb = (int64_t)v->t * (x->xb >> 30) + v->step[2];
+    x->cr += (uint64_t)v->w[0] * dt;
+    x->cg += (uint64_t)v->w[1] * dt;
+    x->cb += (uint64_t)v->w[2] * dt;
+    x->t = t;
+}
+
+/* Interval v joins run x at its back; v + 1 comes next: the constant is (w - w_after) 2^30 + 2^29, which is
+ * 2^30 - v[1].step (added and subtracted in that order: gcc then adds an immediate and subtracts from memory, one
+ * instruction fewer a channel than forming 2^30 - step first). */
+static inline void run_add_back(run_t *x, const vfi_interval_t *v)
+{
+    const uint32_t t = mul_q30(x->t, v->t), dt = x->t - t;
+    x->xr = (int64_t)v->t * (x->xr >> 30) + (int64_t)ONE_Q30 - v[1].step[0];
+    x->xg = (int64_t)v->t * (x->xg >> 30) + (int64_t)ONE_Q30 - v[1].step[1];
+    x->xb = (int64_t)v->t * (x->xb >> 30) + (int64_t)ONE_Q30 - v[1].step[2];
+    x->cr += (uint64_t)v->w[0] * dt;
+    x->cg += (uint64_t)v->w[1] * dt;
+    x->cb += (uint64_t)v->w[2] * dt;
+    x->t = t;
+}
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* Entries. */
+
+/* The window that is suffix s in front of a prefix: s in front of it seen from the front, it in front of s seen
+ * from the back. The prefix's colour seen from the front (Q.30) and from the back (Q.60 with the half added),
+ * and its transmittance. */
+static inline window_t join(const vfi_suffix_t *s, uint32_t pr, uint32_t pg, uint32_t pb, uint64_t pbr,
+                            uint64_t pbg, uint64_t pbb, uint32_t pt)
+{
+    window_t x;
+    const uint64_t st = s->t;
+    x.r = s->front_q60[0] + st * pr;
+    x.g = s->front_q60[1] + st * pg;
+    x.b = s->front_q60[2] + st * pb;
+    x.br = pbr + (uint64_t)pt * s->back[0];
+    x.bg = pbg + (uint64_t)pt * s->back[1];
+    x.bb = pbb + (uint64_t)pt * s->back[2];
+    x.a = ONE_Q60 + HALF_Q15_IN_Q60 - st * pt;
+    return x;
+}
+
+/* Entries up = (f, f+r) and down = (f+r, f) of window x. q15: the default format (out.q15 without grid_bits),
+ * rounded once from Q.60; the others go through Q.30, as the other builders round. */
+static inline void store_window(vfi_table_out_t out, bool q15, size_t up, size_t down, const window_t *x)
+{
+    if (q15) {
+        uint16_t *e = out.q15 + up * 4, *g = out.q15 + down * 4;
+        const uint16_t a = (uint16_t)(x->a >> 45);
+        e[0] = (uint16_t)(x->r >> 45);
+        e[1] = (uint16_t)(x->g >> 45);
+        e[2] = (uint16_t)(x->b >> 45);
+        e[3] = a;
+        g[0] = (uint16_t)(x->br >> 45);
+        g[1] = (uint16_t)(x->bg >> 45);
+        g[2] = (uint16_t)(x->bb >> 45);
+        g[3] = a;
+    } else {
+        /* through Q.30: take the half of Q1.15 off (every value holds at least the half it had added, so this
+         * cannot wrap) and put the half of Q.30 on */
+        const uint64_t unhalf = HALF_Q15_IN_Q60 - HALF_Q30;
+        store_pair_q30(out, up, down, (uint32_t)((x->r - unhalf) >> 30), (uint32_t)((x->g - unhalf) >> 30),
+                       (uint32_t)((x->b - unhalf) >> 30), (uint32_t)((x->br - unhalf) >> 30),
+                       (uint32_t)((x->bg - unhalf) >> 30), (uint32_t)((x->bb - unhalf) >> 30),
+                       (uint32_t)((x->a - unhalf) >> 30));
+    }
+}
+
+void vfi_store_entry(vfi_table_out_t out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a)
+{
+    vfi_store_q30(out, entry, r, g, b, a);
+}
+
+/* Out of line, so that store_window stays small enough to be inlined into the loops; the values one by one, so
+ * that the window need not be in memory for the call. */
+static void store_pair_q30(vfi_table_out_t out, size_t up, size_t down, uint32_t r, uint32_t g, uint32_t b,
+                           uint32_t br, uint32_t bg, uint32_t bb, uint32_t a)
+{
+    vfi_store_q30(out, up, r, g, b, a);
+    vfi_store_q30(out, down, br, bg, bb, a);
+}
+
+/* An entry's four values as one object, so that copying one is one move (C lets a struct with uint16_t or uint8_t
+ * members access those values). */
+typedef struct entry_q15 {
+    uint16_t v[4];
+} entry_q15_t;
+typedef struct entry_u8 {
+    uint8_t v[4];
+} entry_u8_t;
+
+/* Entries up and down from the entries distance before each: a window's entries equal to the previous one's. */
+static inline void copy_pair(vfi_table_out_t out, size_t up, size_t down, size_t distance)
+{
+    if (out.q15) {
+        entry_q15_t *e = (entry_q15_t *)out.q15;
+        e[up] = e[up - distance];
+        e[down] = e[down - distance];
+    } else {
+        entry_u8_t *e = (entry_u8_t *)out.u8;
+        e[up] = e[up - distance];
+        e[down] = e[down - distance];
+    }
+}
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* A block of windows. */
+
+/* Every interval of the block s0 .. s0+r-1 and of the prefixes visible: the suffix from f (kept at k_lo + f - s0)
+ * for f down from the block's end, then window f = the suffix from f joined with the prefix s0+r .. f+r-1.
+ * The suffixes from past end (the last block of a diagonal) start no window: composited, not kept. */
+static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
+{
+    const uint32_t n = d->n, r = d->r;
+    const vfi_interval_t *v = d->iv + s0 + r - 1, *stop = d->iv + end; /* the block's last interval */
+    run_t acc = empty_run(v);
+    for (; v > stop; v--)
+        run_add_front(&acc, v);
+    vfi_suffix_t *s = d->suf + k_lo + (end - s0);
+    for (stop = d->iv + s0; v >= stop; v--, s--) {
+        run_add_front(&acc, v);
+        /* C 2^30 + the half of Q1.15 = x + w_next 2^30 - 2^29 + the half, which is v[-1].w_q60 */
+        s->front_q60[0] = (uint64_t)(acc.xr + (int64_t)v[-1].w_q60[0]);
+        s->front_q60[1] = (uint64_t)(acc.xg + (int64_t)v[-1].w_q60[1]);
+        s->front_q60[2] = (uint64_t)(acc.xb + (int64_t)v[-1].w_q60[2]);
+        s->back[0] = (uint32_t)(acc.cr >> 30);
+        s->back[1] = (uint32_t)(acc.cg >> 30);
+        s->back[2] = (uint32_t)(acc.cb >> 30);
+        s->t = acc.t;
+    }
+    s++;
+
+    const vfi_table_out_t out = d->out;
+    const bool q15 = out.q15 && !out.grid_bits;
+    const vfi_suffix_t *last = s + (end - s0);
+    size_t up = (size_t)s0 * n + s0 + r, down = (size_t)(s0 + r) * n + s0;
+    v = d->iv + s0 + r; /* the interval after the prefix */
+    run_t pre = empty_run(v);
+    for (;; s++, v++) {
+        const window_t x = join(s, (uint32_t)(pre.cr >> 30), (uint32_t)(pre.cg >> 30), (uint32_t)(pre.cb >> 30),
+                                (uint64_t)(pre.xr + (int64_t)v->w_q60[0]),
+                                (uint64_t)(pre.xg + (int64_t)v->w_q60[1]), (uint64_t)(pre.xb + (int64_t)v->w_q60[2]),
+                                pre.t);
+        store_window(out, q15, up, down, &x);
+        if (s == last)
+            break;
+        run_add_back(&pre, v);
+        up += n + 1;
+        down += n + 1;
+    }
+}
+
+/* The same with invisible intervals (t = 1; any interval with t = 1 changes no bit of a composite, so skipping
+ * it is exact, and for transfer functions with narrow peaks that is most of the work). Suffixes are kept for
+ * the visible intervals only, k_lo .. k_hi - 1; the suffix from f is the one from the first visible interval at
+ * or after f, or the empty run. While the interval a window drops and the one the next adds both have t = 1, the
+ * next window's entries are this one's. */
+static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
+{
+    const uint32_t n = d->n, r = d->r;
+    const vfi_interval_t *iv = d->iv;
+    const uint16_t *visible = d->visible, *first_visible = d->first_visible;
+    uint32_t k = k_hi, k_end = first_visible[end] + 1u; /* the suffixes from k_end on start no window */
+    pair_t acc = empty_pair();
+    for (; k > k_end; k--)
+        pair_add_front(&acc, iv + visible[k - 1]);
+    for (; k > k_lo; k--) {
+        pair_add_front(&acc, iv + visible[k - 1]);
+        vfi_suffix_t *s = &d->suf[k - 1];
+        s->front_q60[0] = ((uint64_t)acc.r << 30) + HALF_Q15_IN_Q60;
+        s->front_q60[1] = ((uint64_t)acc.g << 30) + HALF_Q15_IN_Q60;
+        s->front_q60[2] = ((uint64_t)acc.b << 30) + HALF_Q15_IN_Q60;
+        s->back[0] = acc.br;
+        s->back[1] = acc.bg;
+        s->back[2] = acc.bb;
+        s->t = acc.t;
+    }
+
+    const vfi_table_out_t out = d->out;
+    const bool q15 = out.q15 && !out.grid_bits;
+    size_t up = (size_t)s0 * n + s0 + r, down = (size_t)(s0 + r) * n + s0;
+    vfi_suffix_t none; /* the empty suffix */
+    none.front_q60[0] = none.front_q60[1] = none.front_q60[2] = HALF_Q15_IN_Q60;
+    none.back[0] = none.back[1] = none.back[2] = 0;
+    none.t = ONE_Q30;
+    pair_t pre = empty_pair();
+    for (uint32_t f = s0;;) {
+        k = first_visible[f];
+        const window_t x = join(k < k_hi ? &d->suf[k] : &none, pre.r, pre.g, pre.b,
+                                ((uint64_t)pre.br << 30) + HALF_Q15_IN_Q60, ((uint64_t)pre.bg << 30) + HALF_Q15_IN_Q60,
+                                ((uint64_t)pre.bb << 30) + HALF_Q15_IN_Q60, pre.t);
+        store_window(out, q15, up, down, &x);
+        for (; f < end && iv[f].t == ONE_Q30 && iv[f + r].t == ONE_Q30; f++) {
+            up += n + 1;
+            down += n + 1;
+            copy_pair(out, up, down, n + 1);
+        }
+        if (f == end)
+            break;
+        if (iv[f + r].t != ONE_Q30)
+            pair_add_back(&pre, iv + f + r);
+        f++;
+        up += n + 1;
+        down += n + 1;
+    }
+}
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* Intervals. */
+
+/* The records of the intervals, once a table: the weights; step = (w - w_before) 2^30 + 2^29 and w_q60 = w 2^30
+ * - 2^29 + the half of Q1.15 (block_dense's constants: the colourless records before the first interval and
+ * after the last count as weight 0); the mean extinction (t0 + t1) / 2 in Q.24. An interval whose mean rounds to
+ * 0 lets all through at every length: its t is set to 1 here, once; the others are listed for transmittances().
+ * Returns how many are listed. */
+static uint32_t list_intervals(const vfi_classify_t *cls, const vfi_table_scratch_t *scratch)
+{
+    const uint32_t count = cls->n - 1;
+    vfi_interval_t *iv = scratch->interval + 1; /* interval m at iv + m, m = -1 .. count */
+    for (uint32_t m = 0; m < count; m++)
+        for (int c = 0; c < 3; c++)
+            iv[m].w[c] = cls->weight_q30[m * 3 + c];
+    for (int c = 0; c < 3; c++)
+        iv[-1].w[c] = iv[count].w[c] = 0;
+    iv[-1].t = iv[count].t = ONE_Q30;
+    uint32_t listed = 0;
+    for (uint32_t m = 0; m <= count; m++) {
+        vfi_interval_t *v = &iv[m];
+        for (int c = 0; c < 3; c++)
+            v->step[c] = ((int64_t)v->w[c] - (int64_t)v[-1].w[c]) * (INT64_C(1) << 30) + (int64_t)HALF_Q30;
+        if (m == count)
+            break;
+        v->mean_q24 = (uint32_t)(((uint64_t)cls->tau_q28[m] + cls->tau_q28[m + 1] + 16) >> 5);
+        scratch->first_visible[m] = (uint16_t)listed;
+        if (v->mean_q24 != 0)
+            scratch->visible[listed++] = (uint16_t)m;
+        else
+            v->t = ONE_Q30;
+    }
+    for (int64_t m = -1; m <= (int64_t)count; m++)
+        for (int c = 0; c < 3; c++)
+            iv[m].w_q60[c] = ((uint64_t)iv[m].w[c] << 30) + (HALF_Q15_IN_Q60 - HALF_Q30);
+    scratch->first_visible[count] = (uint16_t)listed;
+    return listed;
+}
+
+/* The listed intervals' transmittance exp(-mean L) for pieces of length L (Q.28, in d_ref): the brute force's
+ * 1 - opacity, to the bit (the same exponential, inline). */
+static inline void transmittance(const uint32_t *exp_tables, vfi_interval_t *v, uint64_t length_q28)
+{
+    /* the mean extinction in Q.24 times the length in Q.28: Q.52, back to Q.28 */
+    v->t = vfi_exp_neg_q28_with(exp_tables, ((uint64_t)v->mean_q24 * length_q28 + (UINT64_C(1) << 23)) >> 24);
+}
+
+static void transmittances(const vfi_table_scratch_t *scratch, uint32_t visible_count, uint32_t count,
+                           uint64_t length_q28)
+{
+    const uint32_t *exp_tables = vfi_exp_neg_tables();
+    vfi_interval_t *iv = scratch->interval + 1;
+    if (visible_count == count) /* all listed: no list to read */
+        for (vfi_interval_t *v = iv; v < iv + count; v++)
+            transmittance(exp_tables, v, length_q28);
+    else
+        for (uint32_t k = 0; k < visible_count; k++)
+            transmittance(exp_tables, &iv[scratch->visible[k]], length_q28);
+}
+
+/* d / r in Q.28 from d in Q16.16, rounded: (d 2^12 + r / 2) / r. Long division in 16-bit digits, so that each
+ * step is a 32-bit division (remainder < r < 2^16, so remainder 2^16 + digit < 2^32) where vfi_udiv64 took
+ * 64 shift-and-subtract steps; the quotient is the same. */
+static uint64_t piece_length_q28(uint32_t slab_q16, uint32_t r)
+{
+    uint64_t num = ((uint64_t)slab_q16 << 12) + r / 2, q = 0;
+    uint32_t rem = 0;
+    for (int shift = 48; shift >= 0; shift -= 16) {
+        uint32_t cur = (rem << 16) | (uint32_t)((num >> shift) & 0xFFFFu);
+        q = (q << 16) | (cur / r);
+        rem = cur % r;
+    }
+    return q;
+}
