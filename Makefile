@@ -335,7 +335,7 @@ mcu-run: mcu
 
 mcu-firmware: $(MCU_ELF)
 
-$(MCU_BUILD)/core/%.o: core/%.c $(wildcard core/*.h)
+$(MCU_BUILD)/core/%.o: core/%.c $(wildcard core/*.h) $(MCU_BUILD)/core.flags
 	@mkdir -p $(@D)
 	$(MCU_CROSS)gcc $(MCU_CORE_CFLAGS) -c $< -o $@
 
@@ -345,6 +345,12 @@ $(MCU_BUILD)/libvolfix.a: $(MCU_CORE_OBJ)
 $(MCU_BUILD)/gen_scene: $(MCU_DIR)/gen_scene.c $(LIBSIM) $(LIBPORT) $(LIBVOLFIX) $(wildcard host-sim/*.h port/*.h)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_CFLAGS) -o $@ $< $(LIBSIM) $(LIBPORT) $(LIBVOLFIX) $(LDFLAGS) $(PORT_LIBS)
+
+# the core's compiler flags (MCU_FEATURES among them), rewritten only when they change, so that
+# `make mcu MCU_FEATURES=...` rebuilds the core rather than linking objects built with the old features
+$(MCU_BUILD)/core.flags: mcu-force
+	@mkdir -p $(@D)
+	@echo '$(MCU_CORE_CFLAGS)' | cmp -s - $@ || echo '$(MCU_CORE_CFLAGS)' >$@
 
 # the scene's options, rewritten only when they change, so that a new MCU_SCENE regenerates the header
 $(MCU_BUILD)/scene.args: mcu-force
