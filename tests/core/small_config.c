@@ -1,0 +1,102 @@
+/*
+ * small_config.c: one program built twice by small_config.sh, against the whole core and against the smallest
+ * configuration of core/vf_config.h (-DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1, the microcontroller's). It prints,
+ * a line each, the status of creating a renderer with more than one ray and with partial slabs, and a hash of
+ * every frame of a few scenes with one ray and whole slabs; the script requires the small build to refuse the
+ * options left out (VF_ERR_UNSUPPORTED) and to render every frame exactly as the whole core does.
+ */
+#include <stdint.h>
+#include <stdio.h>
+
+#include "volfix.h"
+
+#define NX 21
+#define NY 17
+#define NZ 13
+static uint8_t vox[NX * NY * NZ];
+static _Alignas(16) unsigned char arena_buf[4 << 20];
+static _Alignas(16) unsigned char scratch[1 << 18];
+static unsigned char pixels[48 * 40 * 4];
+
+static const vf_volume_t volume = {{NX, NY, NZ}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
+
+/* Two nested balls with noise, visible up to the box at one corner (where partial slabs would differ). */
+static void fill_volume(void)
+{
+    uint32_t seed = 777;
+    for (uint32_t z = 0; z < NZ; z++)
+        for (uint32_t y = 0; y < NY; y++)
+            for (uint32_t x = 0; x < NX; x++) {
+                seed = seed * 1103515245u + 12345u;
+                int d2 = ((int)x - 10) * ((int)x - 10) + ((int)y - 8) * ((int)y - 8) + ((int)z - 6) * ((int)z - 6);
+                int v = d2 <= 9 ? 220 : d2 <= 30 ? 140 : x + y < 6 ? 180 : 30;
+                vox[(z * NY + y) * NX + x] = (uint8_t)(v + (seed >> 28));
+            }
+}
+
+static const vf_tf_point_t tf_pts[4] = {
+    {0, 65535, 0, 0, 0}, {100 * 256, 65535, 40000, 0, 2500}, {160 * 256, 0, 65535, 20000, 200}, {230 * 256, 0, 0, 65535, 12000}};
+static const vf_tf_t tf = {tf_pts, 4};
+
+static uint64_t fnv1a(const unsigned char *p, size_t n)
+{
+    uint64_t h = 14695981039346656037u;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ p[i]) * 1099511628211u;
+    return h;
+}
+
+/* A renderer's status with these parameters, and (when it renders) its frame's hash, else 0. */
+static vf_status_t render(const vf_params_t *p, const vf_view_t *view, uint64_t *hash)
+{
+    vf_arena_t arena;
+    vf_arena_init(&arena, arena_buf, sizeof arena_buf);
+    vf_renderer_t *r = NULL;
+    vf_image_t im = {pixels, 48, 40, 48 * 3, VF_FORMAT_RGB888};
+    *hash = 0;
+    vf_status_t s = vf_renderer_create(&r, p, &volume, &arena);
+    if (s == VF_OK)
+        s = vf_renderer_set_window(r, (vf_window_t){0, 255});
+    if (s == VF_OK)
+        s = vf_renderer_set_tf(r, &tf);
+    if (s == VF_OK)
+        s = vf_render(r, view, &im, scratch, sizeof scratch);
+    if (s == VF_OK)
+        *hash = fnv1a(pixels, sizeof pixels);
+    return s;
+}
+
+static const char *status_name(vf_status_t s)
+{
+    return s == VF_OK ? "VF_OK" : s == VF_ERR_UNSUPPORTED ? "VF_ERR_UNSUPPORTED" : vf_status_text(s);
+}
+
+int main(void)
+{
+    fill_volume();
+    const vf_view_t views[3] = {{1000, 2000, 300, 65536}, {16384, 500, 0, 65536}, {5000, 14000, 2000, 80000}};
+    vf_params_t p;
+    uint64_t h;
+
+    vf_params_default(&p);
+    p.rays = 2;
+    printf("rays 2: %s\n", status_name(render(&p, &views[0], &h)));
+    vf_params_default(&p);
+    p.partial_slabs = 1;
+    printf("partial slabs: %s\n", status_name(render(&p, &views[0], &h)));
+
+    for (int mode = 0; mode < VF_MODE_COUNT; mode++)
+        for (int lookup = 0; lookup < VF_LOOKUP_COUNT; lookup++)
+            for (int correction = 0; correction < 2; correction++)
+                for (int v = 0; v < 3; v++) {
+                    vf_params_default(&p);
+                    p.mode = (vf_mode_t)mode;
+                    p.lookup = (vf_lookup_t)lookup;
+                    p.correction = correction ? VF_CORRECTION_LUT : VF_CORRECTION_REBUILD;
+                    p.table_size = 128;
+                    vf_status_t s = render(&p, &views[v], &h);
+                    printf("%s %s %s view %d: %s %016llx\n", vf_mode_name(p.mode), vf_lookup_name(p.lookup),
+                           vf_correction_name(p.correction), v, vf_status_text(s), (unsigned long long)h);
+                }
+    return 0;
+}

@@ -1,0 +1,40 @@
+#!/bin/sh
+# The smallest configuration of core/vf_config.h, the microcontroller's (-DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1):
+# tests/core/small_config.c built against it and against the whole core. The small core must refuse more than
+# one ray and partial slabs with VF_ERR_UNSUPPORTED (which the whole core renders), and render every other
+# frame of the program exactly as the whole core does (36 frames: every mode, lookup and correction, 3 views).
+cd "$(dirname "$0")/../.." || exit 2
+out=${BUILD:-build}/small-config
+rm -rf "$out" && mkdir -p "$out"
+cc=${CC:-gcc}
+flags="-std=c99 -O2 -Wall -Wextra -Werror -Icore $SMALL_CONFIG_CFLAGS"
+
+build() { # name, extra flags
+    $cc $flags $2 -o "$out/$1" tests/core/small_config.c core/*.c >"$out/$1.log" 2>&1 &&
+        "$out/$1" >"$out/$1.txt" 2>>"$out/$1.log"
+}
+if ! build whole "" || ! build small "-DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1"; then
+    echo "not ok - small-config/builds and runs: $(head -n 3 "$out"/*.log | tr '\n' ' ')"
+    exit 0
+fi
+
+line() { sed -n "s/^$2: //p" "$out/$1.txt"; }
+for option in "rays 2" "partial slabs"; do
+    whole=$(line whole "$option") small=$(line small "$option")
+    if [ "$whole" = VF_OK ] && [ "$small" = VF_ERR_UNSUPPORTED ]; then
+        echo "ok - small-config/$option: the whole core renders it, the small core says $small"
+    else
+        echo "not ok - small-config/$option: the whole core '$whole' (expected VF_OK), the small core '$small' (expected VF_ERR_UNSUPPORTED)"
+    fi
+done
+
+grep ' view ' "$out/whole.txt" >"$out/whole.frames"
+grep ' view ' "$out/small.txt" >"$out/small.frames"
+frames=$(grep -c . "$out/whole.frames")
+rendered=$(grep -c ': ok ' "$out/whole.frames")
+if [ "$frames" -ge 36 ] && [ "$rendered" = "$frames" ] && diff "$out/whole.frames" "$out/small.frames" >"$out/diff" 2>&1
+then
+    echo "ok - small-config/$frames frames with one ray and whole slabs identical to the whole core's"
+else
+    echo "not ok - small-config/frames: $rendered of $frames rendered; $(head -n 4 "$out/diff" | tr '\n' ' ')"
+fi
