@@ -29,6 +29,17 @@ static void span(int64_t start, int64_t step, int64_t lo, int64_t hi, int64_t wi
 static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, unsigned char *dst);
 static void store_pixel(const warp_row_t *w, unsigned char *dst, const uint32_t px[4]);
 
+/* Whether the four intermediate pixels at p00, p00 + 1 (above) and p01, p01 + 1 (below) are all transparent
+ * black, so that the output pixel is the background whatever the weights. Much of a frame is empty space
+ * around the volume; opacity first, because a pixel with opacity is the common case where it is not. */
+static VF_ALWAYS_INLINE bool empty_neighbours(const uint16_t *p00, const uint16_t *p01)
+{
+    if ((p00[3] | p00[7] | p01[3] | p01[7]) != 0)
+        return false;
+    return (p00[0] | p00[1] | p00[2] | p00[4] | p00[5] | p00[6] | p01[0] | p01[1] | p01[2] | p01[4] | p01[5] |
+            p01[6]) == 0;
+}
+
 vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint32_t y0, uint32_t y1)
 {
     const vf_factor_t *f = &r->factor;
@@ -89,6 +100,11 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
             uint32_t w00 = 65536u - fx - fy + w11, w10 = fx - w11, w01 = fy - w11;
             const uint16_t *p00 = img + ((size_t)(v >> 32) * (size_t)iw + (size_t)(u >> 32)) * 4;
             const uint16_t *p01 = p00 + iw * 4;
+            if (empty_neighbours(p00, p01)) { /* exactly what the weights would give: the background */
+                for (uint32_t k = 0; k < bpp; k++)
+                    row[x * bpp + k] = background[k];
+                continue;
+            }
             uint32_t px[4];
             for (int c = 0; c < 4; c++)
                 px[c] = (p00[c] * w00 + p00[4 + c] * w10 + p01[c] * w01 + p01[4 + c] * w11 + 0x8000u) >> 16;
