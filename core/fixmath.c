@@ -183,6 +183,12 @@ uint32_t vfi_sqrt64_round(uint64_t x)
 
 uint64_t vfi_udiv64(uint64_t num, uint64_t den)
 {
+#if UINTPTR_MAX > 0xFFFFFFFFu
+    /* 64-bit targets divide 64 bits in one instruction (x86-64, aarch64), no helper needed: the same quotient
+     * for a fraction of the 64 steps below, which the warp pays on every output row (and, as those steps do,
+     * all ones rather than a trap should a caller ever pass 0) */
+    return den ? num / den : UINT64_MAX;
+#else
     uint64_t q = 0, r = 0;
     for (int i = 63; i >= 0; i--) {
         r = (r << 1) | ((num >> i) & 1u);
@@ -192,6 +198,7 @@ uint64_t vfi_udiv64(uint64_t num, uint64_t den)
         }
     }
     return q;
+#endif
 }
 
 int64_t vfi_sdiv64_round(int64_t num, int64_t den)

@@ -47,8 +47,8 @@ uint32_t vfi_neg_ln_q32(uint64_t y_q32);
 uint32_t vfi_isqrt64(uint64_t x);
 uint32_t vfi_sqrt64_round(uint64_t x);
 
-/* Division without the compiler's 64-bit helpers (so the core links with nothing on 32-bit targets).
- * den must not be 0. The _round form rounds half away from zero. */
+/* Division without the compiler's 64-bit helpers (so the core links with nothing on 32-bit targets; 64-bit
+ * targets use their divide instruction). den must not be 0. The _round form rounds half away from zero. */
 uint64_t vfi_udiv64(uint64_t num, uint64_t den);
 int64_t vfi_sdiv64_round(int64_t num, int64_t den);
 
