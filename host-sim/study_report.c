@@ -136,6 +136,23 @@ static int scene_index(const study_t *st, const char *label)
     return -1;
 }
 
+/* A text field of results.csv followed by its comma, quoted (RFC 4180) when it holds a comma or a quote, as
+ * the fixed-point check's labels do ("fixed-engine-30,20"). */
+static void csv_text(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\n")) {
+        fprintf(f, "%s,", s);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s, f);
+    }
+    fputs("\",", f);
+}
+
 static int write_csv(const study_t *st, char *err, size_t errlen)
 {
     FILE *f = open_in(st, "results.csv", err, errlen);
@@ -149,8 +166,13 @@ static int write_csv(const study_t *st, char *err, size_t errlen)
         const study_run_t *r = &st->runs[i];
         const study_scene_t *sc = &st->scenes[r->scene];
         const vf_params_t *p = &r->params;
-        fprintf(f, "%s,%s,%s,\"%g,%g\",%u,%s,%s,%s,%u,%u,%s,%s,%s,%u,%d,%u,%u,%u,%.3f,%d,%.5f,%.5f,", sc->label,
-                sc->volume, sc->preset, sc->azimuth, sc->elevation, sc->size, r->factor, r->value, vf_mode_name(p->mode),
+        csv_text(f, sc->label);
+        csv_text(f, sc->volume);
+        csv_text(f, sc->preset);
+        fprintf(f, "\"%g,%g\",%u,", sc->azimuth, sc->elevation, sc->size);
+        csv_text(f, r->factor);
+        csv_text(f, r->value);
+        fprintf(f, "%s,%u,%u,%s,%s,%s,%u,%d,%u,%u,%u,%.3f,%d,%.5f,%.5f,", vf_mode_name(p->mode),
                 p->table_size, p->table_bits, vf_lookup_name(p->lookup), vf_correction_name(p->correction),
                 vf_buffer_name(p->buffer), p->rays, p->partial_slabs ? 1 : 0, p->sample_bits, p->intermediate_bits,
                 p->warp_bits, r->vs_reference.psnr_db, r->vs_reference.max_abs[3], r->vs_reference.mean_abs[3],

@@ -49,6 +49,12 @@ rows=$(($(wc -l <"$dir/results.csv") - 1))
 [ "$rows" -ge 80 ] && head -n 1 "$dir/results.csv" | grep -q '^scene,volume,preset' && ok "results.csv has $rows runs" ||
     fail "results.csv" "$rows rows"
 
+# every row has the header's columns, once quoted fields (views, the fixed-point check's labels) are taken out
+cols=$(head -n 1 "$dir/results.csv" | tr -cd , | wc -c)
+bad=$(tail -n +2 "$dir/results.csv" | sed 's/"[^"]*"//g' | awk -F, -v c="$cols" 'NF - 1 != c' | head -n 1)
+[ -z "$bad" ] && ok "every row of results.csv has the header's $((cols + 1)) columns" ||
+    fail "results.csv columns" "a row with other than $((cols + 1)) columns: $(echo "$bad" | cut -c1-80)"
+
 num() { sed -n "s/.*\"$1\": \([-0-9.]*\).*/\1/p" "$dir/summary.json"; }
 gain=$(num interior_preint1_gain_db)
 whole=$(num preint1_gain_db)
