@@ -180,7 +180,7 @@ typedef struct tally {
     int other;
     int time_backwards, time_future, time_zero;
     int read_error;
-    int stale_deadline; /* deadline_ns() stayed more than 1 s in the past */
+    int stale_deadline; /* deadline_ns() stayed more than 1 s before the time read() was last given */
     char err[256];
 } tally_t;
 
@@ -233,7 +233,7 @@ static int tally_progress(const tally_t *t)
  * or max_ms. */
 static void pump(vfp_input_t *in, tally_t *t, unsigned quiet_ms, unsigned max_ms)
 {
-    uint64_t start = hw_now_ns(), last_event = start;
+    uint64_t start = hw_now_ns(), last_event = start, last_read = 0; /* last_read: the now given to read() */
     for (;;) {
         uint64_t now = hw_now_ns();
         if (now - start > (uint64_t)max_ms * 1000000u)
@@ -242,7 +242,9 @@ static void pump(vfp_input_t *in, tally_t *t, unsigned quiet_ms, unsigned max_ms
         if (atomic_load(&driver_done) && now - last_event > (uint64_t)quiet_ms * 1000000u) {
             if (deadline == 0)
                 break;
-            if (deadline + 1000000000u < now) { /* read() was called after it, and it is still there */
+            /* read() was told a time a second past it, and it is still there: judged by the time read() was
+             * given, not by the clock now, so a stalled machine cannot make a deadline look stale */
+            if (last_read && deadline + 1000000000u < last_read) {
                 t->stale_deadline = 1;
                 break;
             }
@@ -259,7 +261,8 @@ static void pump(vfp_input_t *in, tally_t *t, unsigned quiet_ms, unsigned max_ms
         }
         vfp_event_t ev[64];
         char err[256];
-        int n = in->ops->read(in, ev, 64, hw_now_ns(), err, sizeof err);
+        last_read = hw_now_ns();
+        int n = in->ops->read(in, ev, 64, last_read, err, sizeof err);
         if (n < 0) {
             t->read_error++;
             snprintf(t->err, sizeof t->err, "%s", err);
