@@ -11,7 +11,6 @@
  *     (ref_params_t.partial_slabs).
  */
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 
 #include "study.h"
@@ -27,36 +26,32 @@ static uint8_t level(double x)
     return (uint8_t)floor(255 * fmin(fmax(x, 0), 1) + 0.5);
 }
 
-#define FLOOR_MAX_THREADS 16
-
-/* Exact integrals at the intermediate pixels of rows first_row, first_row + row_step, ... */
+/* Exact integrals at the intermediate pixels, a row at a time (truth_rows). */
 typedef struct exact_job {
     const ref_volume_t *vol;
     const truth_tf_t *tf;
     const truth_camera_t *cam;
     const truth_opts_t *opts;
     const ref_factor_t *f;
-    int rays, w, h, first_row, row_step;
+    int rays, w;
     double *exact; /* R, G, B, A per pixel */
 } exact_job_t;
 
 /* The truth's rays through intermediate pixels (U, V), at intermediate points (u, v) = (U / R, V / R): invert the
  * warp's map u = u0 + du_dx x + du_dy y to find the final-image point each one passes through. */
-static void *exact_rows(void *arg)
+static void exact_row(const void *ctx, int V)
 {
-    const exact_job_t *j = arg;
+    const exact_job_t *j = ctx;
     const ref_factor_t *f = j->f;
     const double det = f->du_dx * f->dv_dy - f->du_dy * f->dv_dx;
-    for (int V = j->first_row; V < j->h; V += j->row_step)
-        for (int U = 0; U < j->w; U++) {
-            double a = (double)U / j->rays - f->u0, b = (double)V / j->rays - f->v0;
-            truth_acc_t acc;
-            truth_trace(j->vol, j->tf, j->cam, j->opts, (a * f->dv_dy - b * f->du_dy) / det,
-                        (f->du_dx * b - f->dv_dx * a) / det, &acc);
-            double *p = j->exact + 4 * ((size_t)V * j->w + U);
-            p[0] = acc.C[0], p[1] = acc.C[1], p[2] = acc.C[2], p[3] = 1 - acc.T;
-        }
-    return NULL;
+    for (int U = 0; U < j->w; U++) {
+        double a = (double)U / j->rays - f->u0, b = (double)V / j->rays - f->v0;
+        truth_acc_t acc;
+        truth_trace(j->vol, j->tf, j->cam, j->opts, (a * f->dv_dy - b * f->du_dy) / det,
+                    (f->du_dx * b - f->dv_dx * a) / det, &acc);
+        double *p = j->exact + 4 * ((size_t)V * j->w + U);
+        p[0] = acc.C[0], p[1] = acc.C[1], p[2] = acc.C[2], p[3] = 1 - acc.T;
+    }
 }
 
 /* Warp an intermediate image of R rays per voxel column (R, G, B, A doubles) and compare the result with the
@@ -109,24 +104,8 @@ int study_floor(study_t *st, int scene, int rays, int table_size, study_floor_t 
 
     /* The truth's rays through the intermediate pixels (U, V), on the study's threads (at R = 16 there are 900,000
      * of them, three and a half times the final image's pixels). */
-    const int threads = st->threads < 1 ? 1 : st->threads > FLOOR_MAX_THREADS ? FLOOR_MAX_THREADS : st->threads;
-    exact_job_t jobs[FLOOR_MAX_THREADS];
-    pthread_t ids[FLOOR_MAX_THREADS];
-    int started = 1;
-    for (int n = 0; n < threads; n++) {
-        jobs[n] = (exact_job_t){&in.vol, tf, &cam, &opts, &f, R, W, H, n, threads, exact};
-        if (n > 0) {
-            if (pthread_create(&ids[n], NULL, exact_rows, &jobs[n]) != 0)
-                break;
-            started = n + 1;
-        }
-    }
-    exact_rows(&jobs[0]);
-    for (int n = 1; n < started; n++)
-        pthread_join(ids[n], NULL);
-    /* rows a thread that could not start would have traced */
-    for (int n = started; n < threads; n++)
-        exact_rows(&jobs[n]);
+    const exact_job_t job = {&in.vol, tf, &cam, &opts, &f, R, W, exact};
+    truth_rows(H, st->threads, exact_row, &job);
     out->rays = R;
     out->table_size = N;
     out->int_w = W;

@@ -133,6 +133,12 @@ void truth_trace(const ref_volume_t *vol, const truth_tf_t *tf, const truth_came
 
 /* ---- truth_render.c -------------------------------------------------------------------------------------- */
 
+/* Rows 0 .. rows - 1 of any grid of rays on threads (1..64), interleaved so that the expensive middle of an image
+ * is shared evenly: row(ctx, y) for every y, each exactly once; rows of a thread that could not start are run
+ * on the caller's. */
+#define TRUTH_MAX_THREADS 64
+void truth_rows(int rows, int threads, void (*row)(const void *ctx, int y), const void *ctx);
+
 /* The whole image: rgb[3 (py out_w + px) + c] = C + (1 - A) background[c], rows split over threads (1..64). */
 int truth_render_ex(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const double background[3],
                     const ref_view_t *view, int out_w, int out_h, int threads, const truth_opts_t *opts,
