@@ -42,6 +42,21 @@ static FILE *open_in(const study_t *st, const char *name, char *err, size_t errl
     return f;
 }
 
+/* A plot's data and gnuplot script, NAME.dat and NAME.gp in the study's directory; both or neither. */
+static int open_plot(const study_t *st, const char *name, FILE **d, FILE **g, char *err, size_t errlen)
+{
+    char file[64];
+    snprintf(file, sizeof file, "%s.dat", name);
+    *d = open_in(st, file, err, errlen);
+    snprintf(file, sizeof file, "%s.gp", name);
+    *g = *d ? open_in(st, file, err, errlen) : NULL;
+    if (*d && !*g) {
+        fclose(*d);
+        *d = NULL;
+    }
+    return *g ? 0 : 2;
+}
+
 static const study_run_t *find(const study_t *st, const char *scene, const char *factor, const char *value)
 {
     for (int i = 0; i < st->run_count; i++) {
@@ -301,12 +316,9 @@ static int plot_bits(const study_t *st, char *err, size_t errlen)
     const char *stages[4] = {"table_bits", "sample_bits", "intermediate_bits", "warp_bits"};
     const char *titles[4] = {"table entries (bits)", "samples (fraction bits; 32 = exact)", "intermediate image (bits)",
                              "warp weights (fraction bits)"};
-    FILE *d = open_in(st, "bits.dat", err, errlen), *g = d ? open_in(st, "bits.gp", err, errlen) : NULL;
-    if (!d || !g) {
-        if (d)
-            fclose(d);
+    FILE *d, *g;
+    if (open_plot(st, "bits", &d, &g, err, errlen))
         return 2;
-    }
     fprintf(g, "set terminal pngcairo size 1200,900 font ',10'\nset output 'bits.png'\n"
                "set multiplot layout 2,2 title 'Fixed-point error by precision of each stage (PSNR against the double "
                "reference, higher is better)'\nset grid\nset key bottom right\nset ylabel 'PSNR (dB)'\n");
@@ -332,12 +344,9 @@ static int plot_bits(const study_t *st, char *err, size_t errlen)
 static int plot_table_size(const study_t *st, char *err, size_t errlen)
 {
     const char *factors[2] = {"table_size_nearest", "table_size_bilinear"};
-    FILE *d = open_in(st, "table_size.dat", err, errlen), *g = d ? open_in(st, "table_size.gp", err, errlen) : NULL;
-    if (!d || !g) {
-        if (d)
-            fclose(d);
+    FILE *d, *g;
+    if (open_plot(st, "table_size", &d, &g, err, errlen))
         return 2;
-    }
     fprintf(g, "set terminal pngcairo size 1200,450 font ',10'\nset output 'table_size.png'\n"
                "set multiplot layout 1,2 title 'Table size and lookup'\nset grid\nset logscale x 2\n"
                "set xlabel 'table entries N'\nset ylabel 'PSNR (dB)'\nset key bottom right\n");
@@ -364,12 +373,9 @@ static int plot_table_size(const study_t *st, char *err, size_t errlen)
 
 static int plot_orders(const study_t *st, char *err, size_t errlen)
 {
-    FILE *d = open_in(st, "orders.dat", err, errlen), *g = d ? open_in(st, "orders.gp", err, errlen) : NULL;
-    if (!d || !g) {
-        if (d)
-            fclose(d);
+    FILE *d, *g;
+    if (open_plot(st, "orders", &d, &g, err, errlen))
         return 2;
-    }
     fprintf(d, "scene");
     for (int m = 0; m < VF_MODE_COUNT; m++)
         fprintf(d, " %s", vf_mode_name((vf_mode_t)m));
@@ -400,12 +406,9 @@ static int plot_orders(const study_t *st, char *err, size_t errlen)
 
 static int plot_memory(const study_t *st, char *err, size_t errlen)
 {
-    FILE *d = open_in(st, "memory.dat", err, errlen), *g = d ? open_in(st, "memory.gp", err, errlen) : NULL;
-    if (!d || !g) {
-        if (d)
-            fclose(d);
+    FILE *d, *g;
+    if (open_plot(st, "memory", &d, &g, err, errlen))
         return 2;
-    }
     int which[STUDY_MAX_SCENES], n = 0;
     for (int s = 0; s < st->scene_count; s++)
         if (strncmp(st->scenes[s].label, "fixed-", 6) != 0)
@@ -433,12 +436,9 @@ static int plot_memory(const study_t *st, char *err, size_t errlen)
 /* The gain of pre-integration over point sampling (PSNR against the truth) against the peaks' half-width. */
 static int plot_peaks(const study_t *st, char *err, size_t errlen)
 {
-    FILE *d = open_in(st, "peaks.dat", err, errlen), *g = d ? open_in(st, "peaks.gp", err, errlen) : NULL;
-    if (!d || !g) {
-        if (d)
-            fclose(d);
+    FILE *d, *g;
+    if (open_plot(st, "peaks", &d, &g, err, errlen))
         return 2;
-    }
     for (int inside = 0; inside < 2; inside++) {
         for (int s = 0; s < st->scene_count; s++) {
             const char *label = st->scenes[s].label;
@@ -475,12 +475,9 @@ static int plot_peaks(const study_t *st, char *err, size_t errlen)
 static int plot_rays(const study_t *st, char *err, size_t errlen)
 {
     static const unsigned rays[STUDY_RAYS_STEPS] = {1, 2, 4, 8, 16};
-    FILE *d = open_in(st, "rays.dat", err, errlen), *g = d ? open_in(st, "rays.gp", err, errlen) : NULL;
-    if (!d || !g) {
-        if (d)
-            fclose(d);
+    FILE *d, *g;
+    if (open_plot(st, "rays", &d, &g, err, errlen))
         return 2;
-    }
     fprintf(g, "set terminal pngcairo size 1200,480 font ',10'\nset output 'rays.png'\n"
                "set multiplot layout 1,2 title 'Marschner-Lobb 41^3, sharp, 512x512, view 30,20: rays per voxel "
                "column (one slab per slice throughout)'\nset grid\nset logscale x 2\nset xtics (1, 2, 4, 8, 16)\n"
