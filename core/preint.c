@@ -92,11 +92,17 @@ vf_status_t vfi_table_scratch_alloc(vfi_table_scratch_t *scratch, uint32_t n, vf
                                                                                             : VF_ERR_NOMEM;
 }
 
-void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
-                                  vfi_table_out_t out)
+/* The diagonals share nothing but the classification, so parts can build them side by side: part p of P takes
+ * the diagonal itself when p = 0 and the diagonals r = p + 1, p + 1 + P, ..., which spreads the long ones
+ * (n - r entries) and the short ones alike. Each part lists the intervals in its own scratch. */
+void vfi_preint_table_part(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
+                           vfi_table_out_t out, uint32_t part, uint32_t parts)
 {
+    if (VF_MAX_TABLE_PARTS == 1) /* a build without parts: the code of one */
+        part = 0, parts = 1;
     const uint32_t n = cls->n, count = n - 1; /* count intervals */
-    vfi_point_entries(cls, slab_q16, out, n + 1); /* the diagonal */
+    if (part == 0)
+        vfi_point_entries(cls, slab_q16, out, n + 1); /* the diagonal */
     const uint32_t visible_count = list_intervals(cls, scratch);
     const uint16_t *first_visible = scratch->first_visible;
     diagonal_t d;
@@ -106,7 +112,7 @@ void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16, 
     d.suf = scratch->suffix;
     d.n = n;
     d.out = out;
-    for (uint32_t r = 1; r < n; r++) {
+    for (uint32_t r = part + 1; r < n; r += parts) {
         transmittances(scratch, visible_count, count, piece_length_q28(slab_q16, r));
         d.r = r;
         /* The windows f .. f+r-1 start at f = 0 .. count - r; the block s0 .. s0+r-1 holds the starts s0 .. end,

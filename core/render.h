@@ -41,6 +41,9 @@ struct vf_renderer {
                              * a in Q1.15 (16 bits) or 8 bits */
     bool tables_valid;
     uint32_t tables_generation, tables_slab_q16;
+    uint32_t frame_parts;   /* the parts the frame begun last was given (vf_render_begin_parts) */
+    uint32_t table_parts;   /* of those, how many build the table; 0 when it was built in begin or was up to date */
+    bool table_part_done[VF_MAX_TABLE_PARTS]; /* one flag a part, so that parts running side by side share none */
     uint16_t *lut_f;        /* lut correction knots, VFI_LUT_KNOTS each, when correction is lut */
     uint32_t *lut_g;
     uint32_t lut_slab_q16;  /* the slab length the lut was made for, 0 for none yet */

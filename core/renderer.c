@@ -12,7 +12,9 @@ static size_t table_value_bytes(const vf_params_t *p);
 static size_t table_entries(const vf_params_t *p);
 static size_t table_bytes(const vf_params_t *p);
 static vf_status_t encode_runs(vf_renderer_t *r);
-static void update_tables(vf_renderer_t *r);
+static void update_tables(vf_renderer_t *r, uint32_t parts);
+static bool tables_complete(const vf_renderer_t *r);
+static inline vfi_table_out_t table_out(const vf_renderer_t *r);
 
 void vf_params_default(vf_params_t *p)
 {
@@ -147,11 +149,15 @@ const vf_params_t *vf_renderer_params(const vf_renderer_t *r)
     return r ? &r->params : NULL;
 }
 
-vf_status_t vf_render_begin(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h)
+/* Factor the view and bring the tables up to date, the 2D table in parts when parts > 1. */
+static VF_ALWAYS_INLINE vf_status_t begin(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h,
+                                          uint32_t parts)
 {
     if (!r || !view)
         return VF_ERR_NULL;
     r->have_frame = false;
+    if (parts < 1 || parts > VF_MAX_TABLE_PARTS)
+        return VF_ERR_ARG;
     if (!r->have_window || !r->have_tf || !r->have_runs)
         return VF_ERR_STATE;
     vf_status_t s = vf_factor(&r->factor, &r->volume, view, out_w, out_h);
@@ -159,10 +165,57 @@ vf_status_t vf_render_begin(vf_renderer_t *r, const vf_view_t *view, uint32_t ou
         s = vf_factor_rays(&r->factor, r->params.rays); /* fits: checked against the largest view at create */
     if (s != VF_OK)
         return s;
-    update_tables(r);
+    update_tables(r, parts);
+    if (VF_MAX_TABLE_PARTS > 1)
+        r->frame_parts = parts;
     r->have_frame = true;
     return VF_OK;
 }
+
+vf_status_t vf_render_begin(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h)
+{
+    return begin(r, view, out_w, out_h, 1);
+}
+
+#if VF_MAX_TABLE_PARTS > 1
+vf_status_t vf_render_begin_parts(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h,
+                                  uint32_t parts)
+{
+    return begin(r, view, out_w, out_h, parts);
+}
+
+uint32_t vf_render_tables_pending(const vf_renderer_t *r)
+{
+    return r && r->have_frame && !tables_complete(r) ? r->table_parts : 0;
+}
+
+size_t vf_table_part_bytes(const vf_renderer_t *r)
+{
+    return r ? VFI_ALIGN + vfi_table_scratch_bytes(r->params.table_size) : 0;
+}
+
+vf_status_t vf_render_tables_part(vf_renderer_t *r, uint32_t part, void *scratch, size_t bytes)
+{
+    if (!r || !scratch)
+        return VF_ERR_NULL;
+    if (!r->have_frame)
+        return VF_ERR_STATE;
+    if (part >= r->frame_parts)
+        return VF_ERR_ARG;
+    if (part >= r->table_parts || r->table_part_done[part])
+        return VF_OK; /* nothing to build: the table was up to date, or this part has run */
+    if (bytes < vf_table_part_bytes(r))
+        return VF_ERR_NOMEM; /* the promised size, whatever the buffer's alignment */
+    vf_arena_t arena;
+    vfi_table_scratch_t ts;
+    vf_arena_init(&arena, scratch, bytes);
+    if (vfi_table_scratch_alloc(&ts, r->params.table_size, &arena) != VF_OK)
+        return VF_ERR_NOMEM;
+    vfi_preint_table_part(&r->cls, r->tables_slab_q16, &ts, table_out(r), part, r->table_parts);
+    r->table_part_done[part] = true;
+    return VF_OK;
+}
+#endif
 
 const vf_factor_t *vf_render_factor(const vf_renderer_t *r)
 {
@@ -180,6 +233,8 @@ vf_status_t vf_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, 
         return VF_ERR_NULL;
     if (!r->have_frame)
         return VF_ERR_STATE;
+    if (!tables_complete(r))
+        return VF_ERR_STATE; /* a part of the table has not been built */
     if (v0 >= v1 || v1 > r->factor.int_h)
         return VF_ERR_ARG;
     return vfi_composite_band(r, v0, v1, scratch, bytes);
@@ -213,12 +268,16 @@ const uint16_t *vf_render_intermediate(const vf_renderer_t *r)
 
 const uint16_t *vf_render_point_table(const vf_renderer_t *r)
 {
-    return r && r->tables_valid && r->params.table_bits != 8 && r->params.mode != VF_MODE_PREINT1 ? r->table : NULL;
+    return r && r->tables_valid && tables_complete(r) && r->params.table_bits != 8 && r->params.mode != VF_MODE_PREINT1
+               ? r->table
+               : NULL;
 }
 
 const uint16_t *vf_render_preint_table(const vf_renderer_t *r)
 {
-    return r && r->tables_valid && r->params.table_bits != 8 && r->params.mode == VF_MODE_PREINT1 ? r->table : NULL;
+    return r && r->tables_valid && tables_complete(r) && r->params.table_bits != 8 && r->params.mode == VF_MODE_PREINT1
+               ? r->table
+               : NULL;
 }
 
 static vf_status_t check_params(const vf_params_t *p)
@@ -335,22 +394,29 @@ static vf_status_t encode_runs(vf_renderer_t *r)
 }
 
 /* The tables depend on the transfer function and on the slab length, which changes with the view; with the
- * lut correction they are built for length 1 once per transfer function and the lut follows the view. */
-static void update_tables(vf_renderer_t *r)
+ * lut correction they are built for length 1 once per transfer function and the lut follows the view. A 2D table
+ * asked for in parts is left to vf_render_tables_part, and counts as built once every part has run. */
+static void update_tables(vf_renderer_t *r, uint32_t parts)
 {
     const uint32_t slab = r->factor.slab_q16;
     const bool lut = r->params.correction == VF_CORRECTION_LUT;
     const uint32_t table_slab = lut ? UINT32_C(65536) : slab;
     const bool bits16 = r->params.table_bits != 8; /* 10 and 12 bits are kept in 16-bit words */
-    if (!r->tables_valid || r->tables_generation != r->tf_generation || r->tables_slab_q16 != table_slab) {
-        vfi_table_out_t out;
-        out.q15 = bits16 ? r->table : NULL;
-        out.u8 = bits16 ? NULL : r->table;
-        out.grid_bits = r->params.table_bits == 10 || r->params.table_bits == 12 ? r->params.table_bits : 0;
-        if (r->params.mode == VF_MODE_PREINT1)
-            vfi_preint_table_incremental(&r->cls, table_slab, &r->table_scratch, out);
-        else
-            vfi_point_table(&r->cls, table_slab, out);
+    if (!r->tables_valid || !tables_complete(r) || r->tables_generation != r->tf_generation ||
+        r->tables_slab_q16 != table_slab) {
+        const bool preint = r->params.mode == VF_MODE_PREINT1;
+        const uint32_t split = VF_MAX_TABLE_PARTS > 1 && preint && parts > 1 ? parts : 0;
+        if (VF_MAX_TABLE_PARTS > 1) /* constant 0 in builds for one core, which never read it */
+            r->table_parts = split;
+        for (uint32_t p = 0; p < split; p++)
+            r->table_part_done[p] = false;
+        if (split == 0) {
+            const vfi_table_out_t out = table_out(r);
+            if (preint)
+                vfi_preint_table_incremental(&r->cls, table_slab, &r->table_scratch, out);
+            else
+                vfi_point_table(&r->cls, table_slab, out);
+        }
         r->tables_valid = true;
         r->tables_generation = r->tf_generation;
         r->tables_slab_q16 = table_slab;
@@ -364,4 +430,24 @@ static void update_tables(vf_renderer_t *r)
     r->lookup.n = r->params.table_size;
     r->lookup.lut_f = lut ? r->lut_f : NULL;
     r->lookup.lut_g = lut ? r->lut_g : NULL;
+}
+
+static bool tables_complete(const vf_renderer_t *r)
+{
+    if (VF_MAX_TABLE_PARTS == 1)
+        return true; /* no parts: begin builds the whole table */
+    for (uint32_t p = 0; p < r->table_parts; p++)
+        if (!r->table_part_done[p])
+            return false;
+    return true;
+}
+
+static inline vfi_table_out_t table_out(const vf_renderer_t *r)
+{
+    vfi_table_out_t out;
+    const bool bits16 = r->params.table_bits != 8; /* 10 and 12 bits are kept in 16-bit words */
+    out.q15 = bits16 ? r->table : NULL;
+    out.u8 = bits16 ? NULL : r->table;
+    out.grid_bits = r->params.table_bits == 10 || r->params.table_bits == 12 ? r->params.table_bits : 0;
+    return out;
 }

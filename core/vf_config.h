@@ -21,6 +21,12 @@
 #define VF_DEFAULT_TABLE 256
 #endif
 
+/* Most parts a frame's pre-integrated table can be built in side by side (vf_render_begin_parts); 1 for a
+ * single-core build, which then has no vf_render_begin_parts and vf_render_tables_part. */
+#ifndef VF_MAX_TABLE_PARTS
+#define VF_MAX_TABLE_PARTS 64
+#endif
+
 /* Most control points in a transfer function. */
 #ifndef VF_MAX_TF_POINTS
 #define VF_MAX_TF_POINTS 1024

@@ -10,6 +10,7 @@
  *   vf_renderer_set_window when the window changes: the volume is resampled to 8-bit slices, one copy per axis
  *   vf_renderer_set_tf     when the transfer function changes: classification and run-length encoding
  *   vf_render_begin        per frame: factor the view; rebuild the tables if the slab length changed
+ *                          (vf_render_begin_parts and vf_render_tables_part: the same, the table on threads)
  *   vf_composite_band      per band of intermediate rows (threads may run bands at once)
  *   vf_warp_band           per band of output rows (threads may run bands at once)
  * vf_render() runs the last three on one thread.
@@ -240,6 +241,22 @@ const vf_params_t *vf_renderer_params(const vf_renderer_t *renderer);
 /* Per frame. Begin factors the view and rebuilds the tables when the slab length changed. */
 vf_status_t vf_render_begin(vf_renderer_t *renderer, const vf_view_t *view, uint32_t out_w, uint32_t out_h);
 const vf_factor_t *vf_render_factor(const vf_renderer_t *renderer);
+
+/* A frame on several threads. vf_render_begin builds a table that went stale (a new transfer function or slab
+ * length) on the calling thread; in preint1 that is the one serial part of a frame, and it grows as N^2.
+ * vf_render_begin_parts leaves the 2D table to be built in parts
+ * (1 .. VF_MAX_TABLE_PARTS; 1 is vf_render_begin): then vf_render_tables_pending says how many, and
+ * vf_render_tables_part must run once for each part 0 .. pending - 1, side by side on any threads, each with its
+ * own scratch of vf_table_part_bytes, before any band is composited (vf_composite_band returns VF_ERR_STATE
+ * until then). The table is the same, to the bit, in any number of parts. Order-0 tables are small and always
+ * built in begin. */
+#if VF_MAX_TABLE_PARTS > 1 /* a build for one core (VF_MAX_TABLE_PARTS 1) leaves them out */
+vf_status_t vf_render_begin_parts(vf_renderer_t *renderer, const vf_view_t *view, uint32_t out_w, uint32_t out_h,
+                                  uint32_t parts);
+uint32_t vf_render_tables_pending(const vf_renderer_t *renderer);
+size_t vf_table_part_bytes(const vf_renderer_t *renderer);
+vf_status_t vf_render_tables_part(vf_renderer_t *renderer, uint32_t part, void *scratch, size_t scratch_bytes);
+#endif
 
 /* Bytes of scratch a band of band_rows intermediate rows needs (buffer slices and skip links). */
 size_t vf_band_scratch_bytes(const vf_renderer_t *renderer, uint32_t band_rows);

@@ -10,12 +10,14 @@
 
 #define WARP_BAND 16
 
+typedef enum stage { STAGE_TABLES, STAGE_COMPOSITE, STAGE_WARP } stage_t;
+
 typedef struct band_work {
     vfp_render_t *r;
     const vf_image_t *image;
     atomic_uint next_band;
-    uint32_t bands, rows;
-    int warp;                /* 0: composite intermediate rows, 1: warp output rows */
+    uint32_t bands, rows;    /* bands (table parts) to share out; rows of the stage */
+    stage_t stage;
     atomic_int status;       /* the first failure, VF_OK otherwise */
 } band_work_t;
 
@@ -79,19 +81,25 @@ int vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t cou
 int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen)
 {
     double t0 = vfp_now_ms();
-    vf_status_t s = vf_render_begin(r->core, view, image->width, image->height);
+    /* with threads, a table that went stale is built in a part a thread */
+    vf_status_t s = vf_render_begin_parts(r->core, view, image->width, image->height, (uint32_t)r->threads);
+    if (s == VF_OK && vf_render_tables_pending(r->core)) {
+        band_work_t tables = {.r = r, .image = image, .stage = STAGE_TABLES};
+        tables.bands = vf_render_tables_pending(r->core);
+        s = spread(r, &tables);
+    }
     if (s != VF_OK) {
         snprintf(err, errlen, "cannot begin a frame: %s", vf_status_text(s));
         return 2;
     }
     double t1 = vfp_now_ms();
     const vf_factor_t *f = vf_render_factor(r->core);
-    band_work_t work = {.r = r, .image = image, .rows = f->int_h, .warp = 0};
+    band_work_t work = {.r = r, .image = image, .rows = f->int_h, .stage = STAGE_COMPOSITE};
     work.bands = (f->int_h + r->band_rows - 1) / r->band_rows;
     s = spread(r, &work);
     double t2 = vfp_now_ms();
     if (s == VF_OK) {
-        band_work_t warp = {.r = r, .image = image, .rows = image->height, .warp = 1};
+        band_work_t warp = {.r = r, .image = image, .rows = image->height, .stage = STAGE_WARP};
         warp.bands = (image->height + WARP_BAND - 1) / WARP_BAND;
         s = spread(r, &warp);
     }
@@ -130,8 +138,10 @@ static int create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t er
         snprintf(err, errlen, "cannot create the renderer: %s", vf_status_text(s));
         return 2;
     }
-    /* Scratch for the tallest band, per thread; the core sizes it for any view of this volume. */
+    /* Scratch for the tallest band or a table part, per thread; the core sizes it for any view of this volume. */
     r->scratch_bytes = vf_band_scratch_bytes(r->core, r->band_rows);
+    if (r->threads > 1 && vf_table_part_bytes(r->core) > r->scratch_bytes)
+        r->scratch_bytes = vf_table_part_bytes(r->core);
     for (int t = 0; t < r->threads; t++) {
         free(r->scratch[t]);
         r->scratch[t] = malloc(r->scratch_bytes);
@@ -182,7 +192,9 @@ static void *run_bands(void *arg)
         if (band >= work->bands || atomic_load(&work->status) != VF_OK)
             break;
         vf_status_t s;
-        if (work->warp) {
+        if (work->stage == STAGE_TABLES) {
+            s = vf_render_tables_part(r->core, band, r->scratch[w->index], r->scratch_bytes);
+        } else if (work->stage == STAGE_WARP) {
             uint32_t y0 = band * WARP_BAND, y1 = y0 + WARP_BAND < work->rows ? y0 + WARP_BAND : work->rows;
             s = vf_warp_band(r->core, work->image, y0, y1);
         } else {

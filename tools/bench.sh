@@ -5,9 +5,9 @@
 # every variant's 90 frames once per round, the order rotated from round to round, ratios to point taken
 # within a round; ms/frame is the median over rounds of each round's mean. Quote timings with the machine
 # they came from.
-# How long: about 4 minutes on the shared 2-core development machine (the matrix 70 s for engine and 2
+# How long: about 5 minutes on the shared 2-core development machine (the matrix 70 s for engine and 2
 # minutes for brainsmall, whose slow variants take most of it; tables, callgrind and viewer under a
-# minute together); ROUNDS=1 saves about 2 minutes.
+# minute together, the table on threads about a minute); ROUNDS=1 saves about 2 minutes.
 cd "$(dirname "$0")/.." || exit 2
 sim=${BUILD:-build}/volfix-sim
 data=${VOLFIX_DATA:-../shared/data}
@@ -24,6 +24,20 @@ done
 echo "== pre-integrated tables: incremental O(N^2) against the brute-force O(N^3) oracle"
 for n in 256 1024; do
     "$sim" tables --preset sharp --size $n --repeat $([ $n = 256 ] && echo 9 || echo 1) || exit 1
+done
+echo
+
+# A stale table is the serial part of a preint1 frame; with threads it is built in parts (vf_render_tables_part).
+v=$(echo $volumes | cut -d' ' -f1)
+echo "== the table on threads: $(basename "$v") preint1, $size, the table rebuilt every frame, 3 rounds"
+for n in 256 1024; do
+    for t in 1 2; do
+        "$sim" bench "$v" --table-size $n --threads $t --rounds 3 --preset ramp --size "$size" --json 2>/dev/null |
+            sed -n 's/.*"ms_per_frame": \([0-9.]*\).*"tables_ms": \([0-9.]*\).*/\1 \2/p' |
+            { read -r frame tables || exit 1
+              printf 'table %4s, %s thread%s: frame %6.2f ms, of which the table %6.2f ms\n' $n $t \
+                  "$([ $t = 1 ] || echo s)" "$frame" "$tables"; } || exit 1
+    done
 done
 echo
 

@@ -59,8 +59,20 @@ static vf_status_t render(const vf_params_t *p, const vf_view_t *view, uint64_t 
         s = vf_renderer_set_window(r, (vf_window_t){0, 255});
     if (s == VF_OK)
         s = vf_renderer_set_tf(r, &tf);
+#if VF_MAX_TABLE_PARTS > 1
+    /* the whole core builds its table in 3 parts (the last first), the small core in begin */
     if (s == VF_OK)
-        s = vf_render(r, view, &im, scratch, sizeof scratch);
+        s = vf_render_begin_parts(r, view, im.width, im.height, 3);
+    for (uint32_t part = vf_render_tables_pending(r); s == VF_OK && part-- > 0;)
+        s = vf_render_tables_part(r, part, scratch, sizeof scratch);
+#else
+    if (s == VF_OK)
+        s = vf_render_begin(r, view, im.width, im.height);
+#endif
+    if (s == VF_OK)
+        s = vf_composite_band(r, 0, vf_render_factor(r)->int_h, scratch, sizeof scratch);
+    if (s == VF_OK)
+        s = vf_warp_band(r, &im, 0, im.height);
     if (s == VF_OK)
         *hash = fnv1a(pixels, sizeof pixels);
     return s;

@@ -90,6 +90,19 @@ if [ "$(rays_hash --rays 1)" = "$(rays_hash)" ] && [ "$(rays_hash --reference --
 else
     fail "--rays 1" "the hashes differ from the default's"
 fi
+# threads build the pre-integrated table in parts (vf_render_tables_part): the same frame for any number
+threads_same=yes
+for size in 256 1024; do
+    one=$(rays_hash --table-size "$size")
+    for t in 2 3 16; do
+        [ -n "$one" ] && [ "$(rays_hash --table-size "$size" --threads "$t")" = "$one" ] || threads_same="no: $size, $t"
+    done
+done
+if [ "$threads_same" = yes ]; then
+    ok "--threads 2, 3 and 16 render the frame of one thread (tables of 256 and 1024 built in parts)"
+else
+    fail "--threads" "hashes differ from one thread's ($threads_same)"
+fi
 if "$sim" render phantom:marschner-lobb:16 --size 48x40 --preset sharp --reference --rays 4 --hash >"$tmp/out" 2>&1 &&
     grep -q ' rays 4 48x40 ' "$tmp/out" && [ "$(cut -c1-16 "$tmp/out")" != "$(rays_hash --reference)" ] &&
     [ "$(rays_hash --truth --rays 4)" = "$(rays_hash --truth)" ]; then

@@ -1,0 +1,203 @@
+/*
+ * test_table_parts.c: a frame whose pre-integrated table is built in parts (vf_render_begin_parts,
+ * vf_render_tables_part; core/renderer.c, preint.c): in any number of parts, run in any order, the table and the
+ * picture equal those of vf_render to the bit; compositing before every part has run is refused; a part's
+ * arguments and scratch are checked; a frame abandoned half built is rebuilt by the next.
+ */
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "volfix.h"
+
+#define W 31
+#define H 27
+
+static uint64_t rng_state = 0x9E3779B97F4A7C15u;
+static uint32_t rnd(uint32_t n)
+{
+    rng_state ^= rng_state >> 12;
+    rng_state ^= rng_state << 25;
+    rng_state ^= rng_state >> 27;
+    return (uint32_t)((rng_state * 0x2545F4914F6CDD1Du >> 33) % n);
+}
+
+static uint8_t vox[12 * 11 * 10];
+static _Alignas(16) unsigned char arena_buf[1 << 24];
+static _Alignas(16) unsigned char scratch[VF_MAX_TABLE_PARTS][1 << 18];
+static unsigned char want_px[W * H * 3], got_px[W * H * 3], other_px[W * H * 3];
+static uint16_t want_table[1024 * 1024 * 4];
+
+typedef struct scene {
+    vf_volume_t vol;
+    vf_params_t params;
+    vf_arena_t arena;
+    vf_renderer_t *r;
+    vf_tf_point_t pts[4];
+} scene_t;
+
+/* A blob in noise, and a transfer function with a narrow peak and a wide ramp: entries far off the diagonal
+ * differ from zero, so a diagonal left unbuilt shows. */
+static vf_status_t scene_create(scene_t *s, vf_mode_t mode, uint32_t table_size, uint32_t table_bits,
+                                vf_correction_t correction)
+{
+    s->vol = (vf_volume_t){{12, 11, 10}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
+    for (size_t i = 0; i < sizeof vox; i++)
+        vox[i] = (uint8_t)(rnd(4) == 0 ? rnd(256) : 60 + (i % 12) * 10 + rnd(20));
+    vf_params_default(&s->params);
+    s->params.mode = mode;
+    s->params.table_size = table_size;
+    s->params.table_bits = table_bits;
+    s->params.correction = correction;
+    vf_arena_init(&s->arena, arena_buf, sizeof arena_buf);
+    s->r = NULL;
+    vf_status_t st = vf_renderer_create(&s->r, &s->params, &s->vol, &s->arena);
+    if (st != VF_OK)
+        return st;
+    s->pts[0] = (vf_tf_point_t){0, 65535, 20000, 0, 0};
+    s->pts[1] = (vf_tf_point_t){90 * 256, 0, 65535, 30000, 3000};
+    s->pts[2] = (vf_tf_point_t){100 * 256, 65535, 65535, 65535, 60000};
+    s->pts[3] = (vf_tf_point_t){110 * 256, 10000, 0, 65535, 20000};
+    vf_tf_t tf = {s->pts, 4};
+    st = vf_renderer_set_window(s->r, (vf_window_t){0, 255});
+    return st == VF_OK ? vf_renderer_set_tf(s->r, &tf) : st;
+}
+
+static size_t band_bytes(const scene_t *s)
+{
+    return vf_band_scratch_bytes(s->r, 64);
+}
+
+/* Composite in one band and warp: the picture of a frame that has begun. */
+static vf_status_t finish(const scene_t *s, unsigned char *px)
+{
+    vf_image_t im = {px, W, H, W * 3, VF_FORMAT_RGB888};
+    vf_status_t st = vf_composite_band(s->r, 0, vf_render_factor(s->r)->int_h, scratch[0], band_bytes(s));
+    return st == VF_OK ? vf_warp_band(s->r, &im, 0, H) : st;
+}
+
+/* Every part of the frame begun, in a shuffled order, each with its own scratch. */
+static vf_status_t run_parts(const scene_t *s, uint32_t parts)
+{
+    uint32_t order[VF_MAX_TABLE_PARTS];
+    for (uint32_t p = 0; p < parts; p++)
+        order[p] = p;
+    for (uint32_t p = parts; p > 1; p--) {
+        uint32_t k = rnd(p), t = order[p - 1];
+        order[p - 1] = order[k], order[k] = t;
+    }
+    for (uint32_t p = 0; p < parts; p++) {
+        vf_status_t st = vf_render_tables_part(s->r, order[p], scratch[order[p]], vf_table_part_bytes(s->r));
+        if (st != VF_OK)
+            return st;
+    }
+    return VF_OK;
+}
+
+/* The same table and picture as vf_render, for table sizes from the smallest to the largest, both formats, both
+ * corrections and 1 .. VF_MAX_TABLE_PARTS parts (more parts than diagonals included). */
+static void parts_equal_whole(void)
+{
+    static const struct {
+        uint32_t size, bits;
+        vf_correction_t correction;
+    } cases[] = {{2, 16, VF_CORRECTION_REBUILD},   {7, 16, VF_CORRECTION_REBUILD},  {64, 8, VF_CORRECTION_REBUILD},
+                 {255, 16, VF_CORRECTION_REBUILD}, {256, 16, VF_CORRECTION_LUT},    {256, 8, VF_CORRECTION_LUT},
+                 {1024, 16, VF_CORRECTION_REBUILD}};
+    static const uint32_t part_counts[] = {1, 2, 3, 5, 64};
+    const vf_view_t a = {9000, 4000, 0, 65536}, b = {-3000, 12000, 700, 65536};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        scene_t s;
+        CHECK_EQ(scene_create(&s, VF_MODE_PREINT1, cases[c].size, cases[c].bits, cases[c].correction), VF_OK);
+        const size_t entries = (size_t)cases[c].size * cases[c].size * 4;
+        vf_image_t im = {want_px, W, H, W * 3, VF_FORMAT_RGB888}, other = {other_px, W, H, W * 3, VF_FORMAT_RGB888};
+        CHECK_EQ(vf_render(s.r, &b, &im, scratch[0], band_bytes(&s)), VF_OK);
+        const uint16_t *table = vf_render_preint_table(s.r);
+        CHECK((table != NULL) == (cases[c].bits == 16));
+        if (table)
+            memcpy(want_table, table, entries * sizeof *table);
+        for (size_t k = 0; k < sizeof part_counts / sizeof part_counts[0]; k++) {
+            const uint32_t parts = part_counts[k];
+            CHECK_EQ(vf_render(s.r, &a, &other, scratch[0], band_bytes(&s)), VF_OK); /* another slab length */
+            CHECK_EQ(vf_render_begin_parts(s.r, &b, W, H, parts), VF_OK);
+            /* the lut correction builds its table once: nothing is pending after the first frame */
+            const uint32_t pending = cases[c].correction == VF_CORRECTION_LUT || parts == 1 ? 0 : parts;
+            CHECK_EQ(vf_render_tables_pending(s.r), pending);
+            CHECK_EQ(run_parts(&s, parts), VF_OK);
+            CHECK_EQ(vf_render_tables_pending(s.r), 0);
+            memset(got_px, 0, sizeof got_px);
+            CHECK_EQ(finish(&s, got_px), VF_OK);
+            CHECK_MSG(memcmp(want_px, got_px, sizeof got_px) == 0, "table %u x %u bits, %u parts: pictures differ",
+                      cases[c].size, cases[c].bits, parts);
+            table = vf_render_preint_table(s.r);
+            if (table)
+                CHECK_MSG(memcmp(want_table, table, entries * sizeof *table) == 0,
+                          "table %u, %u parts: tables differ", cases[c].size, parts);
+        }
+    }
+}
+
+/* The order of calls: no band before every part; parts and their arguments checked; a frame left half built. */
+static void parts_state(void)
+{
+    scene_t s;
+    CHECK_EQ(scene_create(&s, VF_MODE_PREINT1, 64, 16, VF_CORRECTION_REBUILD), VF_OK);
+    const vf_view_t a = {9000, 4000, 0, 65536}, b = {-3000, 12000, 700, 65536};
+    vf_image_t im = {want_px, W, H, W * 3, VF_FORMAT_RGB888};
+    const size_t part_bytes = vf_table_part_bytes(s.r);
+    CHECK(part_bytes > 0 && part_bytes <= sizeof scratch[0]);
+    CHECK_EQ(vf_table_part_bytes(NULL), 0);
+    CHECK_EQ(vf_render_tables_pending(NULL), 0);
+    CHECK_EQ(vf_render_tables_pending(s.r), 0); /* no frame */
+    CHECK_EQ(vf_render_tables_part(s.r, 0, scratch[0], part_bytes), VF_ERR_STATE);
+    CHECK_EQ(vf_render(s.r, &b, &im, scratch[0], band_bytes(&s)), VF_OK);
+    /* parts out of range */
+    CHECK_EQ(vf_render_begin_parts(s.r, &a, W, H, 0), VF_ERR_ARG);
+    CHECK(vf_render_factor(s.r) == NULL);
+    CHECK_EQ(vf_render_begin_parts(s.r, &a, W, H, VF_MAX_TABLE_PARTS + 1), VF_ERR_ARG);
+    CHECK_EQ(vf_render_begin_parts(NULL, &a, W, H, 2), VF_ERR_NULL);
+    CHECK_EQ(vf_render_begin_parts(s.r, NULL, W, H, 2), VF_ERR_NULL);
+    /* a new slab length in 3 parts: no band until all three have run */
+    CHECK_EQ(vf_render_begin_parts(s.r, &a, W, H, 3), VF_OK);
+    CHECK_EQ(vf_render_tables_pending(s.r), 3);
+    CHECK(vf_render_preint_table(s.r) == NULL);
+    CHECK_EQ(vf_composite_band(s.r, 0, 1, scratch[0], band_bytes(&s)), VF_ERR_STATE);
+    CHECK_EQ(vf_render_tables_part(s.r, 3, scratch[0], part_bytes), VF_ERR_ARG);
+    CHECK_EQ(vf_render_tables_part(NULL, 0, scratch[0], part_bytes), VF_ERR_NULL);
+    CHECK_EQ(vf_render_tables_part(s.r, 0, NULL, part_bytes), VF_ERR_NULL);
+    CHECK_EQ(vf_render_tables_part(s.r, 0, scratch[0], part_bytes - 1), VF_ERR_NOMEM);
+    CHECK_EQ(vf_render_tables_part(s.r, 0, scratch[0], part_bytes), VF_OK);
+    CHECK_EQ(vf_render_tables_part(s.r, 0, scratch[0], part_bytes), VF_OK); /* again: nothing to do */
+    CHECK_EQ(vf_render_tables_part(s.r, 2, scratch[2], part_bytes), VF_OK);
+    CHECK_EQ(vf_composite_band(s.r, 0, 1, scratch[0], band_bytes(&s)), VF_ERR_STATE); /* part 1 missing */
+    /* abandoned: the next frame, on one thread, builds the whole table again */
+    CHECK_EQ(vf_render(s.r, &a, &im, scratch[0], band_bytes(&s)), VF_OK);
+    CHECK_EQ(vf_render_begin_parts(s.r, &b, W, H, 2), VF_OK);
+    CHECK_EQ(vf_render_tables_part(s.r, 1, scratch[1], part_bytes), VF_OK);
+    CHECK_EQ(vf_render(s.r, &a, &im, scratch[0], band_bytes(&s)), VF_OK); /* abandoned again */
+    CHECK_EQ(vf_render_begin_parts(s.r, &a, W, H, 4), VF_OK);
+    CHECK_EQ(vf_render_tables_pending(s.r), 0); /* the table of a is whole: nothing to build */
+    CHECK_EQ(vf_render_tables_part(s.r, 3, scratch[3], part_bytes), VF_OK);
+    CHECK_EQ(finish(&s, got_px), VF_OK);
+    CHECK(memcmp(want_px, got_px, sizeof got_px) == 0);
+    /* a transfer function set between the parts ends the frame */
+    CHECK_EQ(vf_render_begin_parts(s.r, &b, W, H, 2), VF_OK);
+    vf_tf_t tf = {s.pts, 3};
+    CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
+    CHECK_EQ(vf_render_tables_part(s.r, 0, scratch[0], part_bytes), VF_ERR_STATE);
+    CHECK_EQ(vf_render_tables_pending(s.r), 0);
+    /* order 0: the point table is built in begin whatever the parts */
+    scene_t p;
+    CHECK_EQ(scene_create(&p, VF_MODE_POINT, 256, 16, VF_CORRECTION_REBUILD), VF_OK);
+    CHECK_EQ(vf_render(p.r, &b, &im, scratch[0], band_bytes(&p)), VF_OK);
+    CHECK_EQ(vf_render_begin_parts(p.r, &a, W, H, 8), VF_OK);
+    CHECK_EQ(vf_render_tables_pending(p.r), 0);
+    CHECK(vf_render_point_table(p.r) != NULL);
+    CHECK_EQ(vf_render_tables_part(p.r, 7, scratch[7], vf_table_part_bytes(p.r)), VF_OK);
+    CHECK_EQ(vf_render_tables_part(p.r, 8, scratch[0], vf_table_part_bytes(p.r)), VF_ERR_ARG);
+    CHECK_EQ(finish(&p, got_px), VF_OK);
+}
+
+CHECK_CASES({"parts_equal_whole", parts_equal_whole}, {"parts_state", parts_state});
+CHECK_RUN("core/table_parts")
