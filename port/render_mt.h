@@ -1,7 +1,8 @@
 /*
  * render_mt.h: the core renderer with its memory and threads provided: an arena from malloc sized by the
- * core's own queries (grown when a transfer function needs longer run lists), and compositing and warping
- * spread over threads in bands. The same pixels for any thread count: each pixel is computed by one band.
+ * core's own queries (grown when a transfer function needs longer run lists), a stale pre-integrated table
+ * built in a part a thread, and compositing and warping spread over threads in bands. The same pixels for any
+ * thread count: each table entry is built by one part, each pixel computed by one band.
  */
 #ifndef VFP_RENDER_MT_H
 #define VFP_RENDER_MT_H
