@@ -84,8 +84,9 @@ void vfi_point_entries(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_o
  * scratch) with a prefix of the next (grown one interval an entry). */
 void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
                                  vfi_table_out_t out);
-/* In parts: part (0 .. parts - 1) writes its share of the diagonals and no other entry, so that parts may run
- * side by side, each with its own scratch; all parts together give the whole table, to the bit. */
+/* The incremental builder in parts: part (0 .. parts - 1) writes its share of the diagonals and no other entry, so
+ * that parts may run side by side, each with its own scratch; all parts together give the whole table, to the
+ * bit. vfi_preint_table_incremental is the one part of one. */
 void vfi_preint_table_part(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
                            vfi_table_out_t out, uint32_t part, uint32_t parts);
 static inline void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16,
