@@ -401,7 +401,7 @@ static void update_tables(vf_renderer_t *r, uint32_t parts)
     const uint32_t slab = r->factor.slab_q16;
     const bool lut = r->params.correction == VF_CORRECTION_LUT;
     const uint32_t table_slab = lut ? UINT32_C(65536) : slab;
-    const bool bits16 = r->params.table_bits != 8; /* 10 and 12 bits are kept in 16-bit words */
+    const vfi_table_out_t out = table_out(r);
     if (!r->tables_valid || !tables_complete(r) || r->tables_generation != r->tf_generation ||
         r->tables_slab_q16 != table_slab) {
         const bool preint = r->params.mode == VF_MODE_PREINT1;
@@ -411,7 +411,6 @@ static void update_tables(vf_renderer_t *r, uint32_t parts)
         for (uint32_t p = 0; p < split; p++)
             r->table_part_done[p] = false;
         if (split == 0) {
-            const vfi_table_out_t out = table_out(r);
             if (preint)
                 vfi_preint_table_incremental(&r->cls, table_slab, &r->table_scratch, out);
             else
@@ -425,8 +424,8 @@ static void update_tables(vf_renderer_t *r, uint32_t parts)
         vfi_correction_lut(slab, r->lut_f, r->lut_g); /* rho = d / 1 */
         r->lut_slab_q16 = slab;
     }
-    r->lookup.q15 = bits16 ? r->table : NULL;
-    r->lookup.u8 = bits16 ? NULL : r->table;
+    r->lookup.q15 = out.q15;
+    r->lookup.u8 = out.u8;
     r->lookup.n = r->params.table_size;
     r->lookup.lut_f = lut ? r->lut_f : NULL;
     r->lookup.lut_g = lut ? r->lut_g : NULL;
