@@ -29,7 +29,7 @@ const char sim_scene_help[] =
     "                       image of N x N pixels per voxel, N^2 times the memory); the truth ignores it\n"
     "  --partial-slabs      where a ray crosses a side face of the volume between two slices, composite the part\n"
     "                       of the slab inside it (default: the whole slab or nothing)\n"
-    "  --threads N          compositing and warping threads (default 1)\n"
+    "  --threads N          threads for the table, compositing and warping (default 1)\n"
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]\n"
     "                       for raw voxel files (--spacing also overrides a file's own)\n"
     "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N with NAME marschner-lobb,\n"
