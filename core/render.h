@@ -47,6 +47,11 @@ struct vf_renderer {
     uint16_t *lut_f;        /* lut correction knots, VFI_LUT_KNOTS each, when correction is lut */
     uint32_t *lut_g;
     uint32_t lut_slab_q16;  /* the slab length the lut was made for, 0 for none yet */
+    uint16_t *view_table;   /* the table with the lut applied to every entry (vfi_view_table), which compositing
+                             * then reads instead, when the lut would be applied to the entry alone: nearest lookup
+                             * in a 16-bit table, not preclass (renderer.c, has_view_table) */
+    uint32_t view_slab_q16; /* the slab length the view table was made for, 0 for none yet */
+    bool parts_build;       /* the table's parts build its diagonals, not only their view-table entries */
     vfi_lookup_ctx_t lookup;
 
     vf_factor_t factor;

@@ -11,6 +11,7 @@ static size_t intermediate_pixels(const uint32_t dims[3], uint32_t rays, uint32_
 static size_t table_value_bytes(const vf_params_t *p);
 static size_t table_entries(const vf_params_t *p);
 static size_t table_bytes(const vf_params_t *p);
+static bool has_view_table(const vf_params_t *p);
 static vf_status_t encode_runs(vf_renderer_t *r);
 static void update_tables(vf_renderer_t *r, uint32_t parts);
 static bool tables_complete(const vf_renderer_t *r);
@@ -89,10 +90,12 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
         r->lut_f = vfi_arena_alloc(arena, sizeof(uint16_t) * VFI_LUT_KNOTS);
         r->lut_g = vfi_arena_alloc(arena, sizeof(uint32_t) * VFI_LUT_KNOTS);
     }
+    if (has_view_table(p))
+        r->view_table = vfi_arena_alloc(arena, table_entries(p) * 4 * sizeof(uint16_t));
     r->intermediate_max = intermediate_pixels(vol->dims, p->rays, &r->max_int_w, &r->max_ni);
     r->intermediate = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * r->intermediate_max);
     if (s != VF_OK || !r->slices[0] || !r->slices[1] || !r->slices[2] || !r->table ||
-        (lut && (!r->lut_f || !r->lut_g)) || !r->intermediate)
+        (lut && (!r->lut_f || !r->lut_g)) || (has_view_table(p) && !r->view_table) || !r->intermediate)
         return VF_ERR_NOMEM; /* the caller's arena is theirs to reset; *out stays NULL */
     r->runs_mark = arena->used;
 
@@ -206,12 +209,22 @@ vf_status_t vf_render_tables_part(vf_renderer_t *r, uint32_t part, void *scratch
         return VF_OK; /* nothing to build: the table was up to date, or this part has run */
     if (bytes < vf_table_part_bytes(r))
         return VF_ERR_NOMEM; /* the promised size, whatever the buffer's alignment */
-    vf_arena_t arena;
-    vfi_table_scratch_t ts;
-    vf_arena_init(&arena, scratch, bytes);
-    if (vfi_table_scratch_alloc(&ts, r->params.table_size, &arena) != VF_OK)
-        return VF_ERR_NOMEM;
-    vfi_preint_table_part(&r->cls, r->tables_slab_q16, &ts, table_out(r), part, r->table_parts);
+    const vfi_table_out_t out = table_out(r);
+    if (r->parts_build) {
+        vf_arena_t arena;
+        vfi_table_scratch_t ts;
+        vf_arena_init(&arena, scratch, bytes);
+        if (vfi_table_scratch_alloc(&ts, r->params.table_size, &arena) != VF_OK)
+            return VF_ERR_NOMEM;
+        vfi_preint_table_part(&r->cls, r->tables_slab_q16, &ts, out, part, r->table_parts);
+    }
+    if (r->view_table) { /* the entries this part built, or would have: the lut of this view on each */
+        vfi_lookup_ctx_t lut = r->lookup;
+        lut.q15 = out.q15;
+        lut.lut_f = r->lut_f;
+        lut.lut_g = r->lut_g;
+        vfi_view_table_part(&lut, out.q15, r->view_table, r->params.table_size, part, r->table_parts);
+    }
     r->table_part_done[part] = true;
     return VF_OK;
 }
@@ -340,7 +353,18 @@ static size_t table_bytes(const vf_params_t *p)
     size_t bytes = vfi_table_scratch_bytes(p->table_size) + vfi_arena_block(table_entries(p) * 4 * table_value_bytes(p));
     if (p->correction == VF_CORRECTION_LUT)
         bytes += vfi_arena_block(sizeof(uint16_t) * VFI_LUT_KNOTS) + vfi_arena_block(sizeof(uint32_t) * VFI_LUT_KNOTS);
+    if (has_view_table(p))
+        bytes += vfi_arena_block(table_entries(p) * 4 * sizeof(uint16_t));
     return bytes;
+}
+
+/* The lut is applied to each table entry once a view rather than to each segment when a segment's correction
+ * depends on its entry alone: nearest lookup, not preclass (which corrects the interpolation of four entries).
+ * Not for 8-bit tables, which are asked for to save memory: a 16-bit view table would add twice theirs. */
+static bool has_view_table(const vf_params_t *p)
+{
+    return VF_VIEW_TABLE && p->correction == VF_CORRECTION_LUT && p->lookup == VF_LOOKUP_NEAREST &&
+           p->mode != VF_MODE_PRECLASS && p->table_bits != 8;
 }
 
 /* The intermediate image is at most (n_i + n_k - 1) x (n_j + n_k - 1) voxels for any view, as |shear| <= 1, and with
@@ -394,32 +418,17 @@ static vf_status_t encode_runs(vf_renderer_t *r)
 }
 
 /* The tables depend on the transfer function and on the slab length, which changes with the view; with the
- * lut correction they are built for length 1 once per transfer function and the lut follows the view. A 2D table
- * asked for in parts is left to vf_render_tables_part, and counts as built once every part has run. */
+ * lut correction they are built for length 1 once per transfer function and the lut follows the view, applied to
+ * every entry of a view table if there is one. A 2D table asked for in parts is left to vf_render_tables_part
+ * (its diagonals, or only their view-table entries), and counts as built once every part has run. */
 static void update_tables(vf_renderer_t *r, uint32_t parts)
 {
     const uint32_t slab = r->factor.slab_q16;
-    const bool lut = r->params.correction == VF_CORRECTION_LUT;
+    const bool lut = r->params.correction == VF_CORRECTION_LUT, view = VF_VIEW_TABLE && r->view_table;
     const uint32_t table_slab = lut ? UINT32_C(65536) : slab;
     const vfi_table_out_t out = table_out(r);
-    if (!r->tables_valid || !tables_complete(r) || r->tables_generation != r->tf_generation ||
-        r->tables_slab_q16 != table_slab) {
-        const bool preint = r->params.mode == VF_MODE_PREINT1;
-        const uint32_t split = VF_MAX_TABLE_PARTS > 1 && preint && parts > 1 ? parts : 0;
-        if (VF_MAX_TABLE_PARTS > 1) /* constant 0 in builds for one core, which never read it */
-            r->table_parts = split;
-        for (uint32_t p = 0; p < split; p++)
-            r->table_part_done[p] = false;
-        if (split == 0) {
-            if (preint)
-                vfi_preint_table_incremental(&r->cls, table_slab, &r->table_scratch, out);
-            else
-                vfi_point_table(&r->cls, table_slab, out);
-        }
-        r->tables_valid = true;
-        r->tables_generation = r->tf_generation;
-        r->tables_slab_q16 = table_slab;
-    }
+    const bool build = !r->tables_valid || !tables_complete(r) || r->tables_generation != r->tf_generation ||
+                       r->tables_slab_q16 != table_slab;
     if (lut && r->lut_slab_q16 != slab) {
         vfi_correction_lut(slab, r->lut_f, r->lut_g); /* rho = d / 1 */
         r->lut_slab_q16 = slab;
@@ -429,6 +438,35 @@ static void update_tables(vf_renderer_t *r, uint32_t parts)
     r->lookup.n = r->params.table_size;
     r->lookup.lut_f = lut ? r->lut_f : NULL;
     r->lookup.lut_g = lut ? r->lut_g : NULL;
+    const bool correct = view && (build || r->view_slab_q16 != slab);
+    if (build || correct) {
+        const bool preint = r->params.mode == VF_MODE_PREINT1;
+        const uint32_t split = VF_MAX_TABLE_PARTS > 1 && preint && parts > 1 ? parts : 0;
+        if (VF_MAX_TABLE_PARTS > 1) { /* constant 0 in builds for one core, which never read them */
+            r->table_parts = split;
+            r->parts_build = build;
+        }
+        for (uint32_t p = 0; p < split; p++)
+            r->table_part_done[p] = false;
+        if (split == 0 && build) {
+            if (preint)
+                vfi_preint_table_incremental(&r->cls, table_slab, &r->table_scratch, out);
+            else
+                vfi_point_table(&r->cls, table_slab, out);
+        }
+        if (split == 0 && correct)
+            vfi_view_table(&r->lookup, out.q15, r->view_table, table_entries(&r->params));
+        r->tables_valid = true;
+        r->tables_generation = r->tf_generation;
+        r->tables_slab_q16 = table_slab;
+        if (view)
+            r->view_slab_q16 = slab;
+    }
+    if (view) { /* compositing reads the view table and corrects nothing */
+        r->lookup.q15 = r->view_table;
+        r->lookup.lut_f = NULL;
+        r->lookup.lut_g = NULL;
+    }
 }
 
 static bool tables_complete(const vf_renderer_t *r)

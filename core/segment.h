@@ -55,16 +55,28 @@ static inline void vfi_split_position(uint32_t n, uint32_t x_q16, uint32_t *i, u
     *f = x_q16 - (*i << 16);
 }
 
-/* The lut correction: a' = F(a), C' = C G(a), F and G linear between knots 1/1024 apart (32 LSB of Q1.15). */
-static inline void vfi_correct(const vfi_lookup_ctx_t *c, uint32_t seg[4])
+/* The lut correction: a' = F(a), C' = C G(a), F and G linear between knots 1/1024 apart (32 LSB of Q1.15).
+ * vfi_lut_at gives F(a) (Q1.15) and G(a) (Q16.16). */
+static inline uint64_t vfi_lut_at(const vfi_lookup_ctx_t *c, uint32_t seg_a, uint32_t *fa)
 {
-    uint32_t a = seg[3] > VFI_ONE_Q15 ? VFI_ONE_Q15 : seg[3];
+    uint32_t a = seg_a > VFI_ONE_Q15 ? VFI_ONE_Q15 : seg_a;
     uint32_t k = a >> 5, f = a & 31u;
     uint32_t k1 = k < 1024 ? k + 1 : 1024;
-    uint32_t fa = (c->lut_f[k] * (32u - f) + c->lut_f[k1] * f + 16u) >> 5;
-    uint64_t g = ((uint64_t)c->lut_g[k] * (32u - f) + (uint64_t)c->lut_g[k1] * f + 16u) >> 5; /* Q16.16 */
+    *fa = (c->lut_f[k] * (32u - f) + c->lut_f[k1] * f + 16u) >> 5;
+    return ((uint64_t)c->lut_g[k] * (32u - f) + (uint64_t)c->lut_g[k1] * f + 16u) >> 5;
+}
+
+static inline uint32_t vfi_lut_colour(uint32_t c, uint64_t g)
+{
+    return (uint32_t)(((uint64_t)c * g + 0x8000u) >> 16);
+}
+
+static inline void vfi_correct(const vfi_lookup_ctx_t *c, uint32_t seg[4])
+{
+    uint32_t fa;
+    const uint64_t g = vfi_lut_at(c, seg[3], &fa);
     for (int n = 0; n < 3; n++)
-        seg[n] = (uint32_t)(((uint64_t)seg[n] * g + 0x8000u) >> 16);
+        seg[n] = vfi_lut_colour(seg[n], g);
     seg[3] = fa;
 }
 

@@ -63,6 +63,24 @@ if command -v valgrind >/dev/null; then
                 awk -v v="$(basename "$v")" -v p="$point" -v q="$total" \
                     'BEGIN { printf "%-24s point / preint1 = %.2f (instructions per frame)\n", v, p / q }'
         done
+        # the lut builds its table once, in the first frame: a frame after that is the difference of 3 and 1
+        # timed frames (4 and 2 rendered) over 2; it corrects the view table for each view
+        counts=
+        for frames in 1 3; do
+            out=$(mktemp)
+            valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=vfp_render_frame \
+                "$sim" bench "$v" --mode preint1 --correction lut --preset ramp --size "$size" --frames $frames \
+                --rounds 1 >/dev/null 2>&1
+            counts="$counts $(sed -n 's/^summary: \([0-9]*\).*/\1/p' "$out")"
+            rm -f "$out"
+        done
+        set -- $counts
+        if [ $# = 2 ] && [ -n "$point" ]; then
+            printf '%-24s %-8s %s instructions per frame after the first (lut)\n' "$(basename "$v")" preint1 \
+                "$((($2 - $1) / 2))"
+            awk -v v="$(basename "$v")" -v p="$point" -v q="$((($2 - $1) / 2))" \
+                'BEGIN { printf "%-24s point / preint1 lut = %.2f (instructions per frame)\n", v, p / 2 / q }'
+        fi
     done
 else
     echo "(valgrind not installed: no instruction counts)"

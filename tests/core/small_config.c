@@ -1,9 +1,9 @@
 /*
  * small_config.c: one program built twice by small_config.sh, against the whole core and against the smallest
- * configuration of core/vf_config.h (-DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1, the microcontroller's). It prints,
- * a line each, the status of creating a renderer with more than one ray and with partial slabs, and a hash of
- * every frame of a few scenes with one ray and whole slabs; the script requires the small build to refuse the
- * options left out (VF_ERR_UNSUPPORTED) and to render every frame exactly as the whole core does.
+ * configuration of core/vf_config.h (the microcontroller's: no partial slabs, rays, table parts or view tables).
+ * It prints, a line each, the status of creating a renderer with more than one ray and with partial slabs, and a
+ * hash of every frame of a few scenes and turns with one ray and whole slabs; the script requires the small build
+ * to refuse the options left out (VF_ERR_UNSUPPORTED) and to render every frame exactly as the whole core does.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -46,19 +46,23 @@ static uint64_t fnv1a(const unsigned char *p, size_t n)
     return h;
 }
 
-/* A renderer's status with these parameters, and (when it renders) its frame's hash, else 0. */
-static vf_status_t render(const vf_params_t *p, const vf_view_t *view, uint64_t *hash)
+static vf_status_t create(const vf_params_t *p, vf_arena_t *arena, vf_renderer_t **r)
 {
-    vf_arena_t arena;
-    vf_arena_init(&arena, arena_buf, sizeof arena_buf);
-    vf_renderer_t *r = NULL;
+    vf_arena_init(arena, arena_buf, sizeof arena_buf);
+    vf_status_t s = vf_renderer_create(r, p, &volume, arena);
+    if (s == VF_OK)
+        s = vf_renderer_set_window(*r, (vf_window_t){0, 255});
+    if (s == VF_OK)
+        s = vf_renderer_set_tf(*r, &tf);
+    return s;
+}
+
+/* A frame of renderer r and its hash, else 0. */
+static vf_status_t frame(vf_renderer_t *r, const vf_view_t *view, uint64_t *hash)
+{
     vf_image_t im = {pixels, 48, 40, 48 * 3, VF_FORMAT_RGB888};
+    vf_status_t s = VF_OK;
     *hash = 0;
-    vf_status_t s = vf_renderer_create(&r, p, &volume, &arena);
-    if (s == VF_OK)
-        s = vf_renderer_set_window(r, (vf_window_t){0, 255});
-    if (s == VF_OK)
-        s = vf_renderer_set_tf(r, &tf);
 #if VF_MAX_TABLE_PARTS > 1
     /* the whole core builds its table in 3 parts (the last first), the small core in begin */
     if (s == VF_OK)
@@ -76,6 +80,44 @@ static vf_status_t render(const vf_params_t *p, const vf_view_t *view, uint64_t 
     if (s == VF_OK)
         *hash = fnv1a(pixels, sizeof pixels);
     return s;
+}
+
+/* A renderer's status with these parameters, and (when it renders) its frame's hash, else 0. */
+static vf_status_t render(const vf_params_t *p, const vf_view_t *view, uint64_t *hash)
+{
+    vf_arena_t arena;
+    vf_renderer_t *r = NULL;
+    vf_status_t s = create(p, &arena, &r);
+    *hash = 0;
+    return s == VF_OK ? frame(r, view, hash) : s;
+}
+
+/* One renderer through a turn of 6 views (each a slab length of its own) with a new transfer function after the
+ * third: the tables must follow (with the lut, the whole core's view table is corrected again each view and
+ * rebuilt with the function, the small core corrects each segment). */
+static void turn(vf_mode_t mode, vf_correction_t correction, uint32_t table_bits)
+{
+    vf_params_t p;
+    vf_params_default(&p);
+    p.mode = mode;
+    p.correction = correction;
+    p.table_bits = table_bits;
+    p.table_size = 96;
+    vf_arena_t arena;
+    vf_renderer_t *r = NULL;
+    vf_status_t s = create(&p, &arena, &r);
+    static const vf_tf_point_t other_pts[3] = {{0, 0, 0, 0, 0}, {120 * 256, 65535, 30000, 10000, 9000}, {255 * 256, 0, 65535, 65535, 30000}};
+    const vf_tf_t other = {other_pts, 3};
+    for (int k = 0; k < 6; k++) {
+        const vf_view_t view = {(int32_t)(k * 2900), 1500 + k * 700, 0, 65536};
+        uint64_t h = 0;
+        if (s == VF_OK && k == 3)
+            s = vf_renderer_set_tf(r, &other);
+        if (s == VF_OK)
+            s = frame(r, &view, &h);
+        printf("%s %s %u-bit turn view %d: %s %016llx\n", vf_mode_name(mode), vf_correction_name(correction),
+               table_bits, k, vf_status_text(s), (unsigned long long)h);
+    }
 }
 
 static const char *status_name(vf_status_t s)
@@ -110,5 +152,9 @@ int main(void)
                     printf("%s %s %s view %d: %s %016llx\n", vf_mode_name(p.mode), vf_lookup_name(p.lookup),
                            vf_correction_name(p.correction), v, vf_status_text(s), (unsigned long long)h);
                 }
+    for (int mode = 0; mode < VF_MODE_COUNT; mode++)
+        for (int correction = 0; correction < 2; correction++)
+            for (uint32_t bits = 8; bits <= 16; bits += 8)
+                turn((vf_mode_t)mode, correction ? VF_CORRECTION_LUT : VF_CORRECTION_REBUILD, bits);
     return 0;
 }

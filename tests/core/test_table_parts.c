@@ -2,7 +2,8 @@
  * test_table_parts.c: a frame whose pre-integrated table is built in parts (vf_render_begin_parts,
  * vf_render_tables_part; core/renderer.c, preint.c): in any number of parts, run in any order, the table and the
  * picture equal those of vf_render to the bit; compositing before every part has run is refused; a part's
- * arguments and scratch are checked; a frame abandoned half built is rebuilt by the next.
+ * arguments and scratch are checked; a frame abandoned half built is rebuilt by the next. With the lut the parts
+ * correct the view table (renderer.c), which must come out the same.
  */
 #include <stdint.h>
 #include <stdlib.h>
@@ -24,7 +25,7 @@ static uint32_t rnd(uint32_t n)
 }
 
 static uint8_t vox[12 * 11 * 10];
-static _Alignas(16) unsigned char arena_buf[1 << 24];
+static _Alignas(16) unsigned char arena_buf[1 << 25];
 static _Alignas(16) unsigned char scratch[VF_MAX_TABLE_PARTS][1 << 18];
 static unsigned char want_px[W * H * 3], got_px[W * H * 3], other_px[W * H * 3];
 static uint16_t want_table[1024 * 1024 * 4];
@@ -104,7 +105,7 @@ static void parts_equal_whole(void)
         vf_correction_t correction;
     } cases[] = {{2, 16, VF_CORRECTION_REBUILD},   {7, 16, VF_CORRECTION_REBUILD},  {64, 8, VF_CORRECTION_REBUILD},
                  {255, 16, VF_CORRECTION_REBUILD}, {256, 16, VF_CORRECTION_LUT},    {256, 8, VF_CORRECTION_LUT},
-                 {1024, 16, VF_CORRECTION_REBUILD}};
+                 {1024, 16, VF_CORRECTION_REBUILD}, {1024, 16, VF_CORRECTION_LUT}};
     static const uint32_t part_counts[] = {1, 2, 3, 5, 64};
     const vf_view_t a = {9000, 4000, 0, 65536}, b = {-3000, 12000, 700, 65536};
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
@@ -121,8 +122,10 @@ static void parts_equal_whole(void)
             const uint32_t parts = part_counts[k];
             CHECK_EQ(vf_render(s.r, &a, &other, scratch[0], band_bytes(&s)), VF_OK); /* another slab length */
             CHECK_EQ(vf_render_begin_parts(s.r, &b, W, H, parts), VF_OK);
-            /* the lut correction builds its table once: nothing is pending after the first frame */
-            const uint32_t pending = cases[c].correction == VF_CORRECTION_LUT || parts == 1 ? 0 : parts;
+            /* the lut correction builds its table once: after the first frame the parts correct the view table
+             * (16 bits), or nothing is pending (8 bits: no view table) */
+            const bool lut8 = cases[c].correction == VF_CORRECTION_LUT && cases[c].bits == 8;
+            const uint32_t pending = lut8 || parts == 1 ? 0 : parts;
             CHECK_EQ(vf_render_tables_pending(s.r), pending);
             CHECK_EQ(run_parts(&s, parts), VF_OK);
             CHECK_EQ(vf_render_tables_pending(s.r), 0);
@@ -187,6 +190,20 @@ static void parts_state(void)
     CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
     CHECK_EQ(vf_render_tables_part(s.r, 0, scratch[0], part_bytes), VF_ERR_STATE);
     CHECK_EQ(vf_render_tables_pending(s.r), 0);
+    /* the lut: a frame that leaves the view table half corrected is corrected again by the next */
+    scene_t l;
+    CHECK_EQ(scene_create(&l, VF_MODE_PREINT1, 200, 16, VF_CORRECTION_LUT), VF_OK);
+    CHECK_EQ(vf_render(l.r, &b, &im, scratch[0], band_bytes(&l)), VF_OK);
+    CHECK_EQ(vf_render(l.r, &a, &im, scratch[0], band_bytes(&l)), VF_OK);
+    CHECK_EQ(vf_render_begin_parts(l.r, &b, W, H, 3), VF_OK);
+    CHECK_EQ(vf_render_tables_pending(l.r), 3);
+    CHECK_EQ(vf_render_tables_part(l.r, 1, scratch[1], vf_table_part_bytes(l.r)), VF_OK);
+    CHECK_EQ(vf_composite_band(l.r, 0, 1, scratch[0], band_bytes(&l)), VF_ERR_STATE);
+    CHECK_EQ(vf_render_begin_parts(l.r, &a, W, H, 2), VF_OK); /* abandoned, back at a's slab length */
+    CHECK_EQ(vf_render_tables_pending(l.r), 2);
+    CHECK_EQ(run_parts(&l, 2), VF_OK);
+    CHECK_EQ(finish(&l, got_px), VF_OK);
+    CHECK(memcmp(want_px, got_px, sizeof got_px) == 0); /* vf_render's picture of a, above */
     /* order 0: the point table is built in begin whatever the parts */
     scene_t p;
     CHECK_EQ(scene_create(&p, VF_MODE_POINT, 256, 16, VF_CORRECTION_REBUILD), VF_OK);
