@@ -218,13 +218,8 @@ vf_status_t vf_render_tables_part(vf_renderer_t *r, uint32_t part, void *scratch
             return VF_ERR_NOMEM;
         vfi_preint_table_part(&r->cls, r->tables_slab_q16, &ts, out, part, r->table_parts);
     }
-    if (r->view_table) { /* the entries this part built, or would have: the lut of this view on each */
-        vfi_lookup_ctx_t lut = r->lookup;
-        lut.q15 = out.q15;
-        lut.lut_f = r->lut_f;
-        lut.lut_g = r->lut_g;
-        vfi_view_table_part(&lut, out.q15, r->view_table, r->params.table_size, part, r->table_parts);
-    }
+    if (r->view_table) /* the entries this part built, or would have: the lut of this view on each */
+        vfi_view_table_part(r->lut_f, r->lut_g, out.q15, r->view_table, r->params.table_size, part, r->table_parts);
     r->table_part_done[part] = true;
     return VF_OK;
 }
@@ -436,11 +431,12 @@ static void update_tables(vf_renderer_t *r, uint32_t parts)
         vfi_correction_lut(slab, r->lut_f, r->lut_g); /* rho = d / 1 */
         r->lut_slab_q16 = slab;
     }
-    r->lookup.q15 = out.q15;
+    /* compositing reads the view table if there is one, and then corrects nothing */
+    r->lookup.q15 = view ? r->view_table : out.q15;
     r->lookup.u8 = out.u8;
     r->lookup.n = r->params.table_size;
-    r->lookup.lut_f = lut ? r->lut_f : NULL;
-    r->lookup.lut_g = lut ? r->lut_g : NULL;
+    r->lookup.lut_f = lut && !view ? r->lut_f : NULL;
+    r->lookup.lut_g = lut && !view ? r->lut_g : NULL;
     const bool correct = view && (build || r->view_slab_q16 != slab);
     if (build || correct) {
         const bool preint = r->params.mode == VF_MODE_PREINT1;
@@ -458,17 +454,12 @@ static void update_tables(vf_renderer_t *r, uint32_t parts)
                 vfi_point_table(&r->cls, table_slab, out);
         }
         if (split == 0 && correct)
-            vfi_view_table(&r->lookup, out.q15, r->view_table, table_entries(&r->params));
+            vfi_view_table(r->lut_f, r->lut_g, out.q15, r->view_table, table_entries(&r->params));
         r->tables_valid = true;
         r->tables_generation = r->tf_generation;
         r->tables_slab_q16 = table_slab;
         if (view)
             r->view_slab_q16 = slab;
-    }
-    if (view) { /* compositing reads the view table and corrects nothing */
-        r->lookup.q15 = r->view_table;
-        r->lookup.lut_f = NULL;
-        r->lookup.lut_g = NULL;
     }
 }
 

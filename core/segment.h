@@ -57,13 +57,13 @@ static inline void vfi_split_position(uint32_t n, uint32_t x_q16, uint32_t *i, u
 
 /* The lut correction: a' = F(a), C' = C G(a), F and G linear between knots 1/1024 apart (32 LSB of Q1.15).
  * vfi_lut_at gives F(a) (Q1.15) and G(a) (Q16.16). */
-static inline uint64_t vfi_lut_at(const vfi_lookup_ctx_t *c, uint32_t seg_a, uint32_t *fa)
+static inline uint64_t vfi_lut_at(const uint16_t *lut_f, const uint32_t *lut_g, uint32_t seg_a, uint32_t *fa)
 {
     uint32_t a = seg_a > VFI_ONE_Q15 ? VFI_ONE_Q15 : seg_a;
     uint32_t k = a >> 5, f = a & 31u;
     uint32_t k1 = k < 1024 ? k + 1 : 1024;
-    *fa = (c->lut_f[k] * (32u - f) + c->lut_f[k1] * f + 16u) >> 5;
-    return ((uint64_t)c->lut_g[k] * (32u - f) + (uint64_t)c->lut_g[k1] * f + 16u) >> 5;
+    *fa = (lut_f[k] * (32u - f) + lut_f[k1] * f + 16u) >> 5;
+    return ((uint64_t)lut_g[k] * (32u - f) + (uint64_t)lut_g[k1] * f + 16u) >> 5;
 }
 
 static inline uint32_t vfi_lut_colour(uint32_t c, uint64_t g)
@@ -74,7 +74,7 @@ static inline uint32_t vfi_lut_colour(uint32_t c, uint64_t g)
 static inline void vfi_correct(const vfi_lookup_ctx_t *c, uint32_t seg[4])
 {
     uint32_t fa;
-    const uint64_t g = vfi_lut_at(c, seg[3], &fa);
+    const uint64_t g = vfi_lut_at(c->lut_f, c->lut_g, seg[3], &fa);
     for (int n = 0; n < 3; n++)
         seg[n] = vfi_lut_colour(seg[n], g);
     seg[3] = fa;

@@ -117,10 +117,10 @@ void vfi_correction_lut(uint32_t rho_q16, uint16_t *f_q15, uint32_t *g_q16)
 
 #if VF_VIEW_TABLE
 /* vfi_correct on one entry, written out so that nothing goes through memory but the entries */
-static inline void correct_entry(const vfi_lookup_ctx_t *lut, const uint16_t *in, uint16_t *out)
+static inline void correct_entry(const uint16_t *lut_f, const uint32_t *lut_g, const uint16_t *in, uint16_t *out)
 {
     uint32_t fa;
-    const uint64_t g = vfi_lut_at(lut, in[3], &fa);
+    const uint64_t g = vfi_lut_at(lut_f, lut_g, in[3], &fa);
     for (int k = 0; k < 3; k++) { /* below 2^16 (C' = C a' / a, C <= a + a few LSB), but kept so regardless */
         const uint32_t c = vfi_lut_colour(in[k], g);
         out[k] = (uint16_t)(c > 0xFFFFu ? 0xFFFFu : c);
@@ -128,24 +128,25 @@ static inline void correct_entry(const vfi_lookup_ctx_t *lut, const uint16_t *in
     out[3] = (uint16_t)fa; /* at most 32768 */
 }
 
-void vfi_view_table(const vfi_lookup_ctx_t *lut, const uint16_t *table, uint16_t *view, size_t count)
+void vfi_view_table(const uint16_t *lut_f, const uint32_t *lut_g, const uint16_t *table, uint16_t *view,
+                    size_t count)
 {
     for (size_t e = 0; e < count * 4; e += 4)
-        correct_entry(lut, table + e, view + e);
+        correct_entry(lut_f, lut_g, table + e, view + e);
 }
 
 #if VF_MAX_TABLE_PARTS > 1
-void vfi_view_table_part(const vfi_lookup_ctx_t *lut, const uint16_t *table, uint16_t *view, uint32_t n,
-                         uint32_t part, uint32_t parts)
+void vfi_view_table_part(const uint16_t *lut_f, const uint32_t *lut_g, const uint16_t *table, uint16_t *view,
+                         uint32_t n, uint32_t part, uint32_t parts)
 {
     const size_t stride = ((size_t)n + 1) * 4;
     if (part == 0)
         for (size_t e = 0; e < (size_t)n * stride; e += stride)
-            correct_entry(lut, table + e, view + e);
+            correct_entry(lut_f, lut_g, table + e, view + e);
     for (uint32_t r = part + 1; r < n; r += parts) /* entries (f, f + r) and (f + r, f) */
         for (size_t f = 0, up = (size_t)r * 4, down = (size_t)r * n * 4; f < n - r; f++, up += stride, down += stride) {
-            correct_entry(lut, table + up, view + up);
-            correct_entry(lut, table + down, view + down);
+            correct_entry(lut_f, lut_g, table + up, view + up);
+            correct_entry(lut_f, lut_g, table + down, view + down);
         }
 }
 #endif

@@ -33,13 +33,14 @@ typedef struct vfi_lookup_ctx {
  * a = k / 1024, k = 0..1024 (docs/algorithm.md, section 4b). */
 void vfi_correction_lut(uint32_t rho_q16, uint16_t *f_q15, uint32_t *g_q16);
 
-/* A view table: the lut of lut (lut->lut_f, lut_g) applied once to each entry of a 16-bit table, the numbers a
- * segment with that entry is given when corrected by itself (segment.h, vfi_correct), so that compositing with the
- * view table and no lut gives the same pixels for a fraction of the work. Entries [0, count); or, in part part of
+/* A view table: the lut (knots lut_f, lut_g) applied once to each entry of a 16-bit table, the numbers a segment
+ * with that entry is given when corrected by itself (segment.h, vfi_correct), so that compositing with the view
+ * table and no lut gives the same pixels for a fraction of the work. Entries [0, count); or, in part part of
  * parts of an n x n table, those of the diagonals vfi_preint_table_part builds in that part. */
-void vfi_view_table(const vfi_lookup_ctx_t *lut, const uint16_t *table, uint16_t *view, size_t count);
-void vfi_view_table_part(const vfi_lookup_ctx_t *lut, const uint16_t *table, uint16_t *view, uint32_t n,
-                         uint32_t part, uint32_t parts);
+void vfi_view_table(const uint16_t *lut_f, const uint32_t *lut_g, const uint16_t *table, uint16_t *view,
+                    size_t count);
+void vfi_view_table_part(const uint16_t *lut_f, const uint32_t *lut_g, const uint16_t *table, uint16_t *view,
+                         uint32_t n, uint32_t part, uint32_t parts);
 
 /* A segment's opacity and premultiplied colour while the point table and the brute force are built, Q.30. */
 typedef struct vfi_seg {

@@ -41,17 +41,26 @@ for n in 256 1024; do
 done
 echo
 
+# instructions VOLUME FRAMES [bench options]: callgrind's count of vfp_render_frame over the warm-up frame and
+# FRAMES timed ones (inclusive), or nothing if callgrind gave none
+instructions() {
+    out=$(mktemp)
+    v=$1 frames=$2
+    shift 2
+    valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=vfp_render_frame \
+        "$sim" bench "$v" --preset ramp --size "$size" --frames "$frames" --rounds 1 "$@" >/dev/null 2>&1
+    total=$(sed -n 's/^summary: \([0-9]*\).*/\1/p' "$out")
+    [ -z "$total" ] && total=$(sed -n 's/^totals: \([0-9]*\).*/\1/p' "$out")
+    rm -f "$out"
+    echo "$total"
+}
+
 if command -v valgrind >/dev/null; then
     echo "== instructions per frame (callgrind, vfp_render_frame inclusive, 2 frames averaged)"
     for v in $volumes; do
         point=
         for mode in point preint1; do
-            out=$(mktemp)
-            valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=vfp_render_frame \
-                "$sim" bench "$v" --mode "$mode" --preset ramp --size "$size" --frames 1 --rounds 1 >/dev/null 2>&1
-            total=$(sed -n 's/^summary: \([0-9]*\).*/\1/p' "$out")
-            [ -z "$total" ] && total=$(sed -n 's/^totals: \([0-9]*\).*/\1/p' "$out")
-            rm -f "$out"
+            total=$(instructions "$v" 1 --mode "$mode")
             if [ -z "$total" ]; then
                 echo "$(basename "$v") $mode: callgrind gave no count" >&2
                 continue
@@ -65,20 +74,12 @@ if command -v valgrind >/dev/null; then
         done
         # the lut builds its table once, in the first frame: a frame after that is the difference of 3 and 1
         # timed frames (4 and 2 rendered) over 2; it corrects the view table for each view
-        counts=
-        for frames in 1 3; do
-            out=$(mktemp)
-            valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=vfp_render_frame \
-                "$sim" bench "$v" --mode preint1 --correction lut --preset ramp --size "$size" --frames $frames \
-                --rounds 1 >/dev/null 2>&1
-            counts="$counts $(sed -n 's/^summary: \([0-9]*\).*/\1/p' "$out")"
-            rm -f "$out"
-        done
-        set -- $counts
-        if [ $# = 2 ] && [ -n "$point" ]; then
-            printf '%-24s %-8s %s instructions per frame after the first (lut)\n' "$(basename "$v")" preint1 \
-                "$((($2 - $1) / 2))"
-            awk -v v="$(basename "$v")" -v p="$point" -v q="$((($2 - $1) / 2))" \
+        one=$(instructions "$v" 1 --mode preint1 --correction lut)
+        three=$(instructions "$v" 3 --mode preint1 --correction lut)
+        if [ -n "$one" ] && [ -n "$three" ] && [ -n "$point" ]; then
+            lut=$(((three - one) / 2))
+            printf '%-24s %-8s %s instructions per frame after the first (lut)\n' "$(basename "$v")" preint1 "$lut"
+            awk -v v="$(basename "$v")" -v p="$point" -v q="$lut" \
                 'BEGIN { printf "%-24s point / preint1 lut = %.2f (instructions per frame)\n", v, p / 2 / q }'
         fi
     done
