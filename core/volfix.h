@@ -248,8 +248,9 @@ const vf_factor_t *vf_render_factor(const vf_renderer_t *renderer);
  * (1 .. VF_MAX_TABLE_PARTS; 1 is vf_render_begin): then vf_render_tables_pending says how many, and
  * vf_render_tables_part must run once for each part 0 .. pending - 1, side by side on any threads, each with its
  * own scratch of vf_table_part_bytes, before any band is composited (vf_composite_band returns VF_ERR_STATE
- * until then). The table is the same, to the bit, in any number of parts. Order-0 tables are small and always
- * built in begin. */
+ * until then). The table is the same, to the bit, in any number of parts. With the lut correction and a view
+ * table (vf_config.h, VF_VIEW_TABLE) the parts also correct their entries of it for a new slab length. Order-0
+ * tables are small and always built in begin. */
 #if VF_MAX_TABLE_PARTS > 1 /* a build for one core (VF_MAX_TABLE_PARTS 1) leaves them out */
 vf_status_t vf_render_begin_parts(vf_renderer_t *renderer, const vf_view_t *view, uint32_t out_w, uint32_t out_h,
                                   uint32_t parts);

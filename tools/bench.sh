@@ -5,7 +5,7 @@
 # every variant's 90 frames once per round, the order rotated from round to round, ratios to point taken
 # within a round; ms/frame is the median over rounds of each round's mean. Quote timings with the machine
 # they came from.
-# How long: about 5 minutes on the shared 2-core development machine (the matrix 70 s for engine and 2
+# How long: about 4 minutes on the shared 2-core development machine (the matrix 70 s for engine and 2
 # minutes for brainsmall, whose slow variants take most of it; tables, callgrind and viewer under a
 # minute together, the table on threads about a minute); ROUNDS=1 saves about 2 minutes.
 cd "$(dirname "$0")/.." || exit 2
