@@ -102,6 +102,9 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     job.nj = l->nj;
     job.slab_q16 = f->slab_q16;
     job.depth_from_tau = job.lookup.q15 && r->params.table_bits == 16 && r->params.correction != VF_CORRECTION_LUT;
+#if VF_TABLE_ON_DEMAND
+    job.demand = r->table_unbuilt ? &r->demand : NULL; /* only for the plain loop without partial slabs */
+#endif
     slice_place_t place[3];
 
     if (r->params.mode != VF_MODE_PREINT1) {

@@ -85,6 +85,7 @@ typedef struct row_job {
     int32_t front_shift, back_shift;
     const row_visits_t *last;          /* NULL when the last slab did not walk this row */
     row_visits_t *visits;
+    const vfi_demand_t *demand;        /* the 2D table is built as it is read (tables.h), or NULL */
 } row_job_t;
 
 void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass);

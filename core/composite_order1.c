@@ -30,9 +30,12 @@ typedef struct row_arrays {
 /* The default path (nearest lookup, 16-bit table, no lut, full precision), where preint1 frames spend their time:
  * the open pixels of [x, y), their front entries from the buffer (buffered) or sampled here. The loop keeps all it
  * reads in locals, so that the stores to the buffer and the pixels cannot make the compiler read it again; as
- * first written it kept eleven values on the stack and read them every segment. */
-static VF_ALWAYS_INLINE void span_plain(const row_job_t *job, const row_arrays_t *ra, uint32_t x, uint32_t y,
-                                        bool buffered, bool n256)
+ * first written it kept eleven values on the stack and read them every segment.
+ * Returns y, or, in a table built as read, the pixel whose entry was unbuilt, its back sample stored, with the
+ * entry's front and back in *f, *b: the caller builds that diagonal and composites the pixel (plain_unbuilt).
+ * The call in the loop would make it keep more on the stack: 3 instructions more a segment. */
+static VF_ALWAYS_INLINE uint32_t span_plain(const row_job_t *job, const row_arrays_t *ra, uint32_t x, uint32_t y,
+                                            bool buffered, bool n256, uint32_t *f, uint32_t *b)
 {
     const uint32_t n = n256 ? 256 : job->lookup.n, cu = ra->cu, fx = job->back->fx, fy = job->back_fy;
     const uint8_t *top = ra->top, *bottom = ra->bottom;
@@ -53,9 +56,26 @@ static VF_ALWAYS_INLINE void span_plain(const row_job_t *job, const row_arrays_t
         const uint32_t pos_b = vfi_entry_of_sample_n(n, vfi_sample_rows(top + c, bottom + c, fx, fy));
         back_buf[c] = pos_b * n;
         const uint16_t *e = table + ((size_t)row_f + pos_b) * 4;
-        if (e[3] && vfi_blend_q15(pixels + (size_t)c * 4, e))
-            next[u] = (uint16_t)(u + 1);
+        if (e[3]) {
+            if (vfi_blend_q15(pixels + (size_t)c * 4, e))
+                next[u] = (uint16_t)(u + 1);
+        } else if (VF_TABLE_ON_DEMAND && e[0] == VFI_UNBUILT_Q15) { /* only ever in a table built as read */
+            *f = row_f / n, *b = pos_b;
+            return u;
+        }
     }
+    return y;
+}
+
+/* Pixel u's segment, entry (f, b), which span_plain found unbuilt: the diagonal built, then what the loop would do
+ * with it. Returns the pixel to go on from. */
+static uint32_t plain_unbuilt(const row_job_t *job, const row_arrays_t *ra, uint32_t u, uint32_t f, uint32_t b)
+{
+    vfi_preint_demand_diagonal(job->demand, f, b);
+    const uint16_t *e = job->lookup.q15 + ((size_t)f * job->lookup.n + b) * 4;
+    if (e[3] && vfi_blend_q15(ra->pixels + (size_t)(u - ra->cu) * 4, e))
+        job->next[u] = (uint16_t)(u + 1);
+    return u + 1;
 }
 
 /* Any lookup, table format, correction, precision study or number of rays: the open pixels of [x, y). Nearest
@@ -124,13 +144,18 @@ static VF_ALWAYS_INLINE void row(const row_job_t *job, run_merge_t *m, bool plai
             const bool buffered = k < last_count && last[k].a <= x;
             const uint32_t end = buffered ? last[k].b : k < last_count ? last[k].a : (uint32_t)b;
             const uint32_t y = MIN(end, (uint32_t)b);
-            if (!plain)
+            if (!plain) {
                 span_general(job, x, y, buffered);
-            else if (buffered)
-                span_plain(job, &ra, x, y, true, n256);
+                x = y;
+                continue;
+            }
+            uint32_t ef, eb; /* the entry span_plain found unbuilt */
+            x = buffered ? span_plain(job, &ra, x, y, true, n256, &ef, &eb)
+                         : span_plain(job, &ra, x, y, false, n256, &ef, &eb);
+            if (VF_TABLE_ON_DEMAND && x < y)
+                x = plain_unbuilt(job, &ra, x, ef, eb);
             else
-                span_plain(job, &ra, x, y, false, n256);
-            x = y;
+                x = y;
         }
     }
     job->visits->count = count;

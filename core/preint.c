@@ -92,18 +92,12 @@ vf_status_t vfi_table_scratch_alloc(vfi_table_scratch_t *scratch, uint32_t n, vf
                                                                                             : VF_ERR_NOMEM;
 }
 
-/* The diagonals share nothing but the classification, so parts can build them side by side: part p of P takes
- * the diagonal itself when p = 0 and the diagonals r = p + 1, p + 1 + P, ..., which spreads the long ones
- * (n - r entries) and the short ones alike. Each part lists the intervals in its own scratch. */
-void vfi_preint_table_part(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
-                           vfi_table_out_t out, uint32_t part, uint32_t parts)
+/* Diagonal r (1 .. n - 1), both triangles, once list_intervals has run: transmittances for pieces of d / r, then
+ * the blocks. */
+static void build_diagonal(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
+                           uint32_t visible_count, vfi_table_out_t out, uint32_t r)
 {
-    if (VF_MAX_TABLE_PARTS == 1) /* a build without parts: the code of one */
-        part = 0, parts = 1;
     const uint32_t n = cls->n, count = n - 1; /* count intervals */
-    if (part == 0)
-        vfi_point_entries(cls, slab_q16, out, n + 1); /* the diagonal */
-    const uint32_t visible_count = list_intervals(cls, scratch);
     const uint16_t *first_visible = scratch->first_visible;
     diagonal_t d;
     d.iv = scratch->interval + 1;
@@ -112,23 +106,38 @@ void vfi_preint_table_part(const vfi_classify_t *cls, uint32_t slab_q16, const v
     d.suf = scratch->suffix;
     d.n = n;
     d.out = out;
-    for (uint32_t r = part + 1; r < n; r += parts) {
-        transmittances(scratch, visible_count, count, piece_length_q28(slab_q16, r));
-        d.r = r;
-        /* The windows f .. f+r-1 start at f = 0 .. count - r; the block s0 .. s0+r-1 holds the starts s0 .. end,
-         * and its visible intervals are listed at k_lo .. k_hi - 1. */
-        for (uint32_t s0 = 0; s0 + r <= count; s0 += r) {
-            const uint32_t end = s0 + r - 1 < count - r ? s0 + r - 1 : count - r;
-            const uint32_t k_lo = first_visible[s0], k_hi = first_visible[s0 + r];
-            /* the prefixes add intervals s0+r .. end+r-1: when those and the block are all visible, no entry
-             * repeats the last one and the suffix of f is listed at k_lo + f - s0 */
-            if (k_hi - k_lo == r && first_visible[end + r] - k_hi == end - s0)
-                block_dense(&d, s0, end, k_lo);
-            else
-                block_sparse(&d, s0, end, k_lo, k_hi);
-        }
+    d.r = r;
+    transmittances(scratch, visible_count, count, piece_length_q28(slab_q16, r));
+    /* The windows f .. f+r-1 start at f = 0 .. count - r; the block s0 .. s0+r-1 holds the starts s0 .. end, and
+     * its visible intervals are listed at k_lo .. k_hi - 1. */
+    for (uint32_t s0 = 0; s0 + r <= count; s0 += r) {
+        const uint32_t end = s0 + r - 1 < count - r ? s0 + r - 1 : count - r;
+        const uint32_t k_lo = first_visible[s0], k_hi = first_visible[s0 + r];
+        /* the prefixes add intervals s0+r .. end+r-1: when those and the block are all visible, no entry repeats
+         * the last one and the suffix of f is listed at k_lo + f - s0 */
+        if (k_hi - k_lo == r && first_visible[end + r] - k_hi == end - s0)
+            block_dense(&d, s0, end, k_lo);
+        else
+            block_sparse(&d, s0, end, k_lo, k_hi);
     }
 }
+
+/* The diagonals share nothing but the classification, so parts can build them side by side: part p of P takes
+ * the diagonal itself when p = 0 and the diagonals r = p + 1, p + 1 + P, ..., which spreads the long ones
+ * (n - r entries) and the short ones alike. Each part lists the intervals in its own scratch. */
+void vfi_preint_table_part(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
+                           vfi_table_out_t out, uint32_t part, uint32_t parts)
+{
+    if (VF_MAX_TABLE_PARTS == 1) /* a build without parts: the code of one */
+        part = 0, parts = 1;
+    const uint32_t n = cls->n;
+    if (part == 0)
+        vfi_point_entries(cls, slab_q16, out, n + 1); /* the diagonal */
+    const uint32_t visible_count = list_intervals(cls, scratch);
+    for (uint32_t r = part + 1; r < n; r += parts)
+        build_diagonal(cls, slab_q16, scratch, visible_count, out, r);
+}
+
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Runs of intervals (the header comment gives the arithmetic and its bound). */
@@ -486,3 +495,31 @@ static uint64_t piece_length_q28(uint32_t slab_q16, uint32_t r)
     }
     return q;
 }
+
+#if VF_TABLE_ON_DEMAND
+/* ---------------------------------------------------------------------------------------------------------- */
+/* The table built as it is read (tables.h). Every entry is marked unbuilt as one object (entry_q15_t, as
+ * copy_pair copies them), then the diagonal itself is built over the marks. */
+void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, uint32_t slab_q16,
+                             const vfi_table_scratch_t *scratch, vfi_table_out_t out)
+{
+    const uint32_t n = cls->n;
+    entry_q15_t unbuilt, *e = (entry_q15_t *)out.q15;
+    unbuilt.v[0] = unbuilt.v[1] = unbuilt.v[2] = VFI_UNBUILT_Q15;
+    unbuilt.v[3] = 0;
+    for (size_t k = 0; k < (size_t)n * n; k++)
+        e[k] = unbuilt;
+    vfi_point_entries(cls, slab_q16, out, n + 1);
+    demand->cls = cls;
+    demand->scratch = scratch;
+    demand->out = out;
+    demand->slab_q16 = slab_q16;
+    demand->visible_count = list_intervals(cls, scratch);
+}
+
+void vfi_preint_demand_diagonal(const vfi_demand_t *demand, uint32_t f, uint32_t b)
+{
+    build_diagonal(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->out,
+                   f > b ? f - b : b - f);
+}
+#endif

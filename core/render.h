@@ -52,6 +52,11 @@ struct vf_renderer {
                              * in a 16-bit table, not preclass (renderer.c, has_view_table) */
     uint32_t view_slab_q16; /* the slab length the view table was made for, 0 for none yet */
     bool parts_build;       /* the table's parts build its diagonals, not only their view-table entries */
+#if VF_TABLE_ON_DEMAND
+    bool table_unbuilt;     /* the 2D table has diagonals marked unbuilt, which compositing builds as it reads
+                             * them, with demand (vf_render_begin_one_thread) */
+    vfi_demand_t demand;
+#endif
     vfi_lookup_ctx_t lookup;
 
     vf_factor_t factor;

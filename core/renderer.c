@@ -13,7 +13,10 @@ static size_t table_entries(const vf_params_t *p);
 static size_t table_bytes(const vf_params_t *p);
 static bool has_view_table(const vf_params_t *p);
 static vf_status_t encode_runs(vf_renderer_t *r);
-static void update_tables(vf_renderer_t *r, uint32_t parts);
+static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread);
+#if VF_TABLE_ON_DEMAND
+static bool on_demand(const vf_params_t *p);
+#endif
 static bool tables_complete(const vf_renderer_t *r);
 static inline vfi_table_out_t table_out(const vf_renderer_t *r);
 
@@ -152,9 +155,10 @@ const vf_params_t *vf_renderer_params(const vf_renderer_t *r)
     return r ? &r->params : NULL;
 }
 
-/* Factor the view and bring the tables up to date, the 2D table in parts when parts > 1. */
+/* Factor the view and bring the tables up to date, the 2D table in parts when parts > 1, or as compositing reads
+ * it when one_thread. */
 static VF_ALWAYS_INLINE vf_status_t begin(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h,
-                                          uint32_t parts)
+                                          uint32_t parts, bool one_thread)
 {
     if (!r || !view)
         return VF_ERR_NULL;
@@ -168,7 +172,7 @@ static VF_ALWAYS_INLINE vf_status_t begin(vf_renderer_t *r, const vf_view_t *vie
         s = vf_factor_rays(&r->factor, r->params.rays); /* fits: checked against the largest view at create */
     if (s != VF_OK)
         return s;
-    update_tables(r, parts);
+    update_tables(r, parts, one_thread);
     if (VF_MAX_TABLE_PARTS > 1)
         r->frame_parts = parts;
     r->have_frame = true;
@@ -177,14 +181,21 @@ static VF_ALWAYS_INLINE vf_status_t begin(vf_renderer_t *r, const vf_view_t *vie
 
 vf_status_t vf_render_begin(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h)
 {
-    return begin(r, view, out_w, out_h, 1);
+    return begin(r, view, out_w, out_h, 1, false);
 }
+
+#if VF_TABLE_ON_DEMAND
+vf_status_t vf_render_begin_one_thread(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h)
+{
+    return begin(r, view, out_w, out_h, 1, true);
+}
+#endif
 
 #if VF_MAX_TABLE_PARTS > 1
 vf_status_t vf_render_begin_parts(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h,
                                   uint32_t parts)
 {
-    return begin(r, view, out_w, out_h, parts);
+    return begin(r, view, out_w, out_h, parts, false);
 }
 
 uint32_t vf_render_tables_pending(const vf_renderer_t *r)
@@ -283,6 +294,10 @@ const uint16_t *vf_render_point_table(const vf_renderer_t *r)
 
 const uint16_t *vf_render_preint_table(const vf_renderer_t *r)
 {
+#if VF_TABLE_ON_DEMAND
+    if (r && r->table_unbuilt)
+        return NULL;
+#endif
     return r && r->tables_valid && tables_complete(r) && r->params.table_bits != 8 && r->params.mode == VF_MODE_PREINT1
                ? r->table
                : NULL;
@@ -419,14 +434,24 @@ static vf_status_t encode_runs(vf_renderer_t *r)
  * lut correction they are built for length 1 once per transfer function and the lut follows the view, applied to
  * every entry of a view table if there is one. A 2D table asked for in parts is left to vf_render_tables_part
  * (its diagonals, or only their view-table entries), and counts as built once every part has run. */
-static void update_tables(vf_renderer_t *r, uint32_t parts)
+static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
 {
     const uint32_t slab = r->factor.slab_q16;
     const bool lut = r->params.correction == VF_CORRECTION_LUT, view = VF_VIEW_TABLE && r->view_table;
     const uint32_t table_slab = lut ? UINT32_C(65536) : slab;
     const vfi_table_out_t out = table_out(r);
-    const bool build = !r->tables_valid || !tables_complete(r) || r->tables_generation != r->tf_generation ||
-                       r->tables_slab_q16 != table_slab;
+#if VF_TABLE_ON_DEMAND
+    const bool demand = one_thread && on_demand(&r->params);
+#else
+    (void)one_thread;
+#endif
+    bool build = !r->tables_valid || !tables_complete(r) || r->tables_generation != r->tf_generation ||
+                 r->tables_slab_q16 != table_slab;
+#if VF_TABLE_ON_DEMAND
+    build = build || (r->table_unbuilt && !demand); /* a frame that needs every entry after one built as read */
+    if (build)
+        r->table_unbuilt = demand;
+#endif
     if (lut && r->lut_slab_q16 != slab) {
         vfi_correction_lut(slab, r->lut_f, r->lut_g); /* rho = d / 1 */
         r->lut_slab_q16 = slab;
@@ -448,6 +473,11 @@ static void update_tables(vf_renderer_t *r, uint32_t parts)
         for (uint32_t p = 0; p < split; p++)
             r->table_part_done[p] = false;
         if (split == 0 && build) {
+#if VF_TABLE_ON_DEMAND
+            if (demand)
+                vfi_preint_demand_begin(&r->demand, &r->cls, table_slab, &r->table_scratch, out);
+            else
+#endif
             if (preint)
                 vfi_preint_table_incremental(&r->cls, table_slab, &r->table_scratch, out);
             else
@@ -462,6 +492,18 @@ static void update_tables(vf_renderer_t *r, uint32_t parts)
             r->view_slab_q16 = slab;
     }
 }
+
+/* Whether a frame on one thread builds its 2D table as compositing reads it: in the one loop that reads it
+ * without interpolating entries (composite.c's plain path, composite_order1.c's span_plain: nearest lookup in a
+ * 16-bit table, no lut, full precision, one ray) and without partial slabs, whose faces read it elsewhere. */
+#if VF_TABLE_ON_DEMAND
+static bool on_demand(const vf_params_t *p)
+{
+    return p->mode == VF_MODE_PREINT1 && p->correction == VF_CORRECTION_REBUILD && p->lookup == VF_LOOKUP_NEAREST &&
+           p->table_bits != 8 && p->rays == 1 && p->sample_bits == 0 && p->intermediate_bits == 16 &&
+           !p->partial_slabs;
+}
+#endif
 
 static bool tables_complete(const vf_renderer_t *r)
 {

@@ -98,6 +98,22 @@ void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, c
  * bit. vfi_preint_table_incremental is the one part of one. */
 void vfi_preint_table_part(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
                            vfi_table_out_t out, uint32_t part, uint32_t parts);
+/* A 2D table built as compositing reads it (a frame composited on one thread: vf_render_begin_one_thread): begin
+ * builds the diagonal itself, lists the intervals and marks every other entry unbuilt, colour VFI_UNBUILT_Q15 and
+ * opacity 0, which no entry has (values are at most 1.0, 32768). A reader that meets such an entry asks for the
+ * diagonal |b - f| of entry (f, b), which vfi_preint_demand_diagonal builds whole, both triangles, to the bit as
+ * vfi_preint_table_part would. 16-bit tables (out.q15) only. */
+#define VFI_UNBUILT_Q15 0xFFFFu
+typedef struct vfi_demand {
+    const vfi_classify_t *cls;
+    const vfi_table_scratch_t *scratch; /* its intervals listed for this table, and room for a block's suffixes */
+    vfi_table_out_t out;
+    uint32_t slab_q16, visible_count;
+} vfi_demand_t;
+void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, uint32_t slab_q16,
+                             const vfi_table_scratch_t *scratch, vfi_table_out_t out);
+void vfi_preint_demand_diagonal(const vfi_demand_t *demand, uint32_t f, uint32_t b);
+
 static inline void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16,
                                                 const vfi_table_scratch_t *scratch, vfi_table_out_t out)
 {

@@ -34,6 +34,12 @@
 #define VF_VIEW_TABLE 1
 #endif
 
+/* Tables built as they are read: a frame composited on one thread (vf_render_begin_one_thread) in the default
+ * preint1 path builds only the diagonals of the 2D table its segments use. 0 leaves it out, and that function. */
+#ifndef VF_TABLE_ON_DEMAND
+#define VF_TABLE_ON_DEMAND 1
+#endif
+
 /* Most control points in a transfer function. */
 #ifndef VF_MAX_TF_POINTS
 #define VF_MAX_TF_POINTS 1024

@@ -251,6 +251,16 @@ const vf_factor_t *vf_render_factor(const vf_renderer_t *renderer);
  * until then). The table is the same, to the bit, in any number of parts. With the lut correction and a view
  * table (vf_config.h, VF_VIEW_TABLE) the parts also correct their entries of it for a new slab length. Order-0
  * tables are small and always built in begin. */
+#if VF_TABLE_ON_DEMAND
+/* A frame whose bands are all composited on the calling thread, one after another (never side by side): the frame
+ * vf_render_begin gives, to the bit, but a stale 2D table is built as compositing first reads each of its
+ * diagonals, so that the frame builds only the diagonals its segments use (in the default preint1 path: nearest
+ * lookup, 16-bit table, rebuild, no precision study, one ray, no partial slabs; otherwise as vf_render_begin).
+ * vf_render_preint_table gives NULL while some diagonals are unbuilt. */
+vf_status_t vf_render_begin_one_thread(vf_renderer_t *renderer, const vf_view_t *view, uint32_t out_w,
+                                       uint32_t out_h);
+#endif
+
 #if VF_MAX_TABLE_PARTS > 1 /* a build for one core (VF_MAX_TABLE_PARTS 1) leaves them out */
 vf_status_t vf_render_begin_parts(vf_renderer_t *renderer, const vf_view_t *view, uint32_t out_w, uint32_t out_h,
                                   uint32_t parts);

@@ -81,8 +81,15 @@ int vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t cou
 int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen)
 {
     double t0 = vfp_now_ms();
-    /* with threads, a table that went stale is built in a part a thread */
+    /* with threads, a table that went stale is built in a part a thread; on one, the bands (one after another)
+     * build the diagonals they read */
+#if VF_TABLE_ON_DEMAND
+    vf_status_t s = r->threads == 1 ? vf_render_begin_one_thread(r->core, view, image->width, image->height)
+                                    : vf_render_begin_parts(r->core, view, image->width, image->height,
+                                                            (uint32_t)r->threads);
+#else
     vf_status_t s = vf_render_begin_parts(r->core, view, image->width, image->height, (uint32_t)r->threads);
+#endif
     if (s == VF_OK && vf_render_tables_pending(r->core)) {
         band_work_t tables = {.r = r, .image = image, .stage = STAGE_TABLES};
         tables.bands = vf_render_tables_pending(r->core);
