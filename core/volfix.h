@@ -10,7 +10,8 @@
  *   vf_renderer_set_window when the window changes: the volume is resampled to 8-bit slices, one copy per axis
  *   vf_renderer_set_tf     when the transfer function changes: classification and run-length encoding
  *   vf_render_begin        per frame: factor the view; rebuild the tables if the slab length changed
- *                          (vf_render_begin_parts and vf_render_tables_part: the same, the table on threads)
+ *                          (vf_render_begin_parts and vf_render_tables_part: the same, the table on threads;
+ *                          vf_render_begin_one_thread: the table built as compositing reads it)
  *   vf_composite_band      per band of intermediate rows (threads may run bands at once)
  *   vf_warp_band           per band of output rows (threads may run bands at once)
  * vf_render() runs the last three on one thread.
