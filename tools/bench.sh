@@ -30,6 +30,7 @@ echo
 # A stale table is the serial part of a preint1 frame; with threads it is built in parts (vf_render_tables_part).
 v=$(echo $volumes | cut -d' ' -f1)
 echo "== the table on threads: $(basename "$v") preint1, $size, the table rebuilt every frame, 3 rounds"
+echo "   (one thread builds the diagonals as compositing reads them: its table time is begin's marking only)"
 for n in 256 1024; do
     for t in 1 2; do
         "$sim" bench "$v" --table-size $n --threads $t --rounds 3 --preset ramp --size "$size" --json 2>/dev/null |
