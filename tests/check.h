@@ -19,6 +19,21 @@ extern int check_failed;
 void check_fail(const char *file, int line, const char *fmt, ...);
 int check_main(const char *suite, const check_case_t *cases, int count, int argc, char **argv);
 
+/* Random numbers a test can repeat (xorshift64*): the same sequence on every machine from the seed the test keeps
+ * in *state. check_below: one in [0, n), from the high bits. */
+static inline uint64_t check_rand64(uint64_t *state)
+{
+    *state ^= *state >> 12;
+    *state ^= *state << 25;
+    *state ^= *state >> 27;
+    return *state * 0x2545F4914F6CDD1Du;
+}
+
+static inline uint32_t check_below(uint64_t *state, uint32_t n)
+{
+    return (uint32_t)((check_rand64(state) >> 33) % n);
+}
+
 #define CHECK_CASES(...) static const check_case_t check_cases_[] = {__VA_ARGS__}
 #define CHECK_RUN(suite) \
     int main(int argc, char **argv) \

@@ -22,10 +22,7 @@
 static uint64_t rng_state = 0x2545F4914F6CDD1Du;
 static uint32_t rnd(uint32_t n)
 {
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return (uint32_t)((rng_state * 0x9E3779B97F4A7C15u >> 33) % n);
+    return check_below(&rng_state, n);
 }
 
 static uint8_t vox[NI * NJ * NK];
