@@ -69,6 +69,15 @@ struct vf_renderer {
     vf_memory_t memory;
 };
 
+/* Whether compositing takes the plain loops (composite_order0.c, composite_order1.c): nearest lookup in a 16-bit
+ * table with nothing corrected per segment (no lut, or a view table), samples and accumulators at full precision
+ * (shifts 0), one ray per voxel column. composite.c asks it of a band's job, renderer.c of a frame's lookup. */
+static inline bool vfi_plain_path(bool bilinear, const uint16_t *q15, const uint16_t *lut_f, uint32_t sample_shift,
+                                  uint32_t inter_shift, uint32_t rays)
+{
+    return !bilinear && q15 && !lut_f && !sample_shift && !inter_shift && rays == 1;
+}
+
 /* composite.c */
 vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes);
 size_t vfi_band_scratch_bytes(const vf_renderer_t *r, uint32_t band_rows);

@@ -15,7 +15,7 @@ static bool has_view_table(const vf_params_t *p);
 static vf_status_t encode_runs(vf_renderer_t *r);
 static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread);
 #if VF_TABLE_ON_DEMAND
-static bool on_demand(const vf_params_t *p);
+static bool on_demand(const vf_renderer_t *r);
 #endif
 static bool tables_complete(const vf_renderer_t *r);
 static inline vfi_table_out_t table_out(const vf_renderer_t *r);
@@ -440,8 +440,14 @@ static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
     const bool lut = r->params.correction == VF_CORRECTION_LUT, view = VF_VIEW_TABLE && r->view_table;
     const uint32_t table_slab = lut ? UINT32_C(65536) : slab;
     const vfi_table_out_t out = table_out(r);
+    /* compositing reads the view table if there is one, and then corrects nothing */
+    r->lookup.q15 = view ? r->view_table : out.q15;
+    r->lookup.u8 = out.u8;
+    r->lookup.n = r->params.table_size;
+    r->lookup.lut_f = lut && !view ? r->lut_f : NULL;
+    r->lookup.lut_g = lut && !view ? r->lut_g : NULL;
 #if VF_TABLE_ON_DEMAND
-    const bool demand = one_thread && on_demand(&r->params);
+    const bool demand = one_thread && on_demand(r);
 #else
     (void)one_thread;
 #endif
@@ -456,12 +462,6 @@ static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
         vfi_correction_lut(slab, r->lut_f, r->lut_g); /* rho = d / 1 */
         r->lut_slab_q16 = slab;
     }
-    /* compositing reads the view table if there is one, and then corrects nothing */
-    r->lookup.q15 = view ? r->view_table : out.q15;
-    r->lookup.u8 = out.u8;
-    r->lookup.n = r->params.table_size;
-    r->lookup.lut_f = lut && !view ? r->lut_f : NULL;
-    r->lookup.lut_g = lut && !view ? r->lut_g : NULL;
     const bool correct = view && (build || r->view_slab_q16 != slab);
     if (build || correct) {
         const bool preint = r->params.mode == VF_MODE_PREINT1;
@@ -493,15 +493,16 @@ static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
     }
 }
 
-/* Whether a frame on one thread builds its 2D table as compositing reads it: in the one loop that reads it
- * without interpolating entries (composite.c's plain path, composite_order1.c's span_plain: nearest lookup in a
- * 16-bit table, no lut, full precision, one ray) and without partial slabs, whose faces read it elsewhere. */
+/* Whether a frame on one thread builds its 2D table as compositing reads it: when the one loop that reads the
+ * table is composite_order1.c's span_plain (the plain path, after update_tables has set the lookup), and without
+ * the lut, whose view table is made from every entry, or partial slabs, whose faces read the table elsewhere. */
 #if VF_TABLE_ON_DEMAND
-static bool on_demand(const vf_params_t *p)
+static bool on_demand(const vf_renderer_t *r)
 {
-    return p->mode == VF_MODE_PREINT1 && p->correction == VF_CORRECTION_REBUILD && p->lookup == VF_LOOKUP_NEAREST &&
-           p->table_bits != 8 && p->rays == 1 && p->sample_bits == 0 && p->intermediate_bits == 16 &&
-           !p->partial_slabs;
+    const vf_params_t *p = &r->params;
+    return p->mode == VF_MODE_PREINT1 && p->correction == VF_CORRECTION_REBUILD && !p->partial_slabs &&
+           vfi_plain_path(p->lookup == VF_LOOKUP_BILINEAR, r->lookup.q15, r->lookup.lut_f, p->sample_bits,
+                          16 - p->intermediate_bits, p->rays);
 }
 #endif
 
