@@ -507,7 +507,15 @@ void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, ui
     entry_q15_t unbuilt, *e = (entry_q15_t *)out.q15;
     unbuilt.v[0] = unbuilt.v[1] = unbuilt.v[2] = VFI_UNBUILT_Q15;
     unbuilt.v[3] = 0;
-    for (size_t k = 0; k < (size_t)n * n; k++)
+    /* four entries a step: the whole table every frame, 4 instructions an entry one at a time (callgrind) */
+    size_t k = 0;
+    for (; k + 4 <= (size_t)n * n; k += 4) {
+        e[k] = unbuilt;
+        e[k + 1] = unbuilt;
+        e[k + 2] = unbuilt;
+        e[k + 3] = unbuilt;
+    }
+    for (; k < (size_t)n * n; k++)
         e[k] = unbuilt;
     vfi_point_entries(cls, slab_q16, out, n + 1);
     demand->cls = cls;
