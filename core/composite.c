@@ -1,9 +1,9 @@
 /*
  * composite.c: slabs front to back into the intermediate image, one band of intermediate rows at a time
- * (docs/algorithm.md, sections 4 and 4b): the band's script. For each slice (order 0) or slab (preint1) and each row
- * of the band it merges the run-length encoding's visible runs under the row and hands them to the row functions of
- * composite_order0.c and composite_order1.c, which walk only those runs and only pixels that are not yet opaque
- * (skip links).
+ * (docs/algorithm.md, sections 4 and 4b): the band's script. For each slice (order 0) and each row of the band it
+ * merges the run-length encoding's visible runs under the row and hands them to composite_order0.c; each slab
+ * (preint1) it hands to composite_order1.c, rows and all. Both walk only those runs and only pixels that are not
+ * yet opaque (skip links). Partial slabs' pixels at the side faces go to composite_partial.c.
  *
  * Scratch per band (the caller's memory, so that bands can run on threads at once):
  *   next     [rows][int_w + 1]      skip links: next[u] == u for an open pixel, else a pixel further right
@@ -25,8 +25,6 @@
 static void place_slice(const vf_renderer_t *r, uint32_t t, slice_place_t *p);
 static void faces_around(const row_job_t *job, int32_t v, int32_t lo, int32_t hi, int32_t inner_lo, int32_t inner_hi,
                          bool preclass);
-static inline const uint8_t *slice_row(const slice_place_t *sl, uint32_t row_bytes, uint32_t step, int32_t v,
-                                       uint32_t *j, uint32_t *fy);
 static unsigned char *align_up(unsigned char *p);
 
 static size_t visits_capacity(uint32_t width)
@@ -133,18 +131,21 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
             job.t = t;
             for (int32_t v = lo; v <= hi; v++) {
                 uint32_t j;
-                job.row_data = slice_row(sl, job.row, job.step, v, &j, &job.front_fy);
+                job.row_data = vfi_slice_row(sl, job.row, job.step, v, &j, &job.front_fy);
                 job.next = next + (size_t)(v - (int32_t)v0) * (width + 1);
                 job.pixels = r->intermediate + (size_t)v * width * 4;
                 const bool whole_row = v >= whole.v_lo && v <= whole.v_hi && whole.u_lo <= whole.u_hi;
                 if (whole_row) {
                     const uint16_t *end, *p = vfi_runs_row(runs, kc, j, &end);
+                    if (p == end)
+                        goto faces;
                     run_merge_t m;
                     vfi_merge_init(&m, job.step_shift, p, end, sl, NULL, NULL, NULL);
                     job.clip_lo = whole.u_lo;
                     job.clip_hi = whole.u_hi;
                     vfi_row_order0(&job, &m, preclass);
                 }
+            faces:
                 if (partial)
                     faces_around(&job, v, sl->u_lo, sl->u_hi, whole_row ? whole.u_lo : sl->u_hi + 1, whole.u_hi,
                                  preclass);
@@ -159,42 +160,43 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
         slice_place_t *back = &place[(t + 1) & 1];
         place_slice(r, t + 1, back);
         uint32_t kc = f->k_flip ? l->nk - 2 - t : t;
-        /* rows where both samples can be inside; with partial slabs also those only one slice covers, and the
-         * pixels around the ones both slices cover (a side face crossed between the slices) */
-        const int32_t both_lo = MAX(front->v_lo, back->v_lo), both_hi = MIN(front->v_hi, back->v_hi);
+        /* rows and pixels where both samples are inside */
+        const int32_t lo = MAX(MAX(front->v_lo, back->v_lo), (int32_t)v0);
+        const int32_t hi = MIN(MIN(front->v_hi, back->v_hi), (int32_t)v1 - 1);
         const int32_t u_lo = MAX(front->u_lo, back->u_lo), u_hi = MIN(front->u_hi, back->u_hi);
-        const int32_t lo = MAX(partial ? MIN(front->v_lo, back->v_lo) : both_lo, (int32_t)v0);
-        const int32_t hi = MIN(partial ? MAX(front->v_hi, back->v_hi) : both_hi, (int32_t)v1 - 1);
         job.front = front;
         job.back = back;
         job.t = t;
         job.front_shift = image_buffer ? 0 : front->cu;
         job.back_shift = image_buffer ? 0 : back->cu;
-        for (int32_t v = lo; v <= hi; v++) {
-            const size_t band_row = (size_t)(v - (int32_t)v0);
-            job.next = next + band_row * (width + 1);
-            job.pixels = r->intermediate + (size_t)v * width * 4;
-            const bool whole_row = v >= both_lo && v <= both_hi && u_lo <= u_hi;
-            if (partial)
-                faces_around(&job, v, MIN(front->u_lo, back->u_lo), MAX(front->u_hi, back->u_hi),
-                             whole_row ? u_lo : MAX(front->u_hi, back->u_hi) + 1, u_hi, false);
-            if (!whole_row)
-                continue;
-            uint32_t j_f, j_b;
-            job.row_data = slice_row(front, job.row, job.step, v, &j_f, &job.front_fy);
-            job.back_row_data = slice_row(back, job.row, job.step, v, &j_b, &job.back_fy);
-            const uint16_t *end_f, *p_f = vfi_runs_row(runs, kc, j_f, &end_f);
-            const uint16_t *end_b, *p_b = vfi_runs_row(runs, kc, j_b, &end_b);
-            run_merge_t m;
-            vfi_merge_init(&m, job.step_shift, p_f, end_f, front, p_b, end_b, back);
-            row_visits_t *last = &visits[((t + 1) & 1) * rows + band_row], *now = &visits[(t & 1) * rows + band_row];
-            now->slab = t;
-            job.last = t > 0 && last->slab == t - 1 ? last : NULL;
-            job.visits = now;
-            job.front_buf = buf[image_buffer ? 0 : t & 1] + band_row * buf_row + buf_first;
-            job.back_buf = buf[image_buffer ? 0 : (t + 1) & 1] + band_row * buf_row + buf_first;
-            vfi_row_preint1(&job, &m);
+        if (partial) { /* the pixels around those both slices cover, and the rows only one covers: other pixels than
+                        * the whole slabs below, so they can go first */
+            const int32_t first = MIN(front->u_lo, back->u_lo), last = MAX(front->u_hi, back->u_hi);
+            const int32_t v_hi = MIN(MAX(front->v_hi, back->v_hi), (int32_t)v1 - 1);
+            for (int32_t v = MAX(MIN(front->v_lo, back->v_lo), (int32_t)v0); v <= v_hi; v++) {
+                const bool whole_row = v >= lo && v <= hi && u_lo <= u_hi;
+                job.next = next + (size_t)(v - (int32_t)v0) * (width + 1);
+                job.pixels = r->intermediate + (size_t)v * width * 4;
+                faces_around(&job, v, first, last, whole_row ? u_lo : last + 1, u_hi, false);
+            }
         }
+        if (lo > hi || u_lo > u_hi)
+            continue;
+        const size_t band_row = (size_t)(lo - (int32_t)v0);
+        vfi_slab_rows_t s;
+        s.v_lo = lo, s.v_hi = hi;
+        s.runs = runs;
+        s.kc = kc;
+        s.next = next + band_row * (width + 1);
+        s.next_stride = width + 1;
+        s.pixels = r->intermediate + (size_t)lo * width * 4;
+        s.pixel_stride = (size_t)width * 4;
+        s.front_buf = buf[image_buffer ? 0 : t & 1] + band_row * buf_row + buf_first;
+        s.back_buf = buf[image_buffer ? 0 : (t + 1) & 1] + band_row * buf_row + buf_first;
+        s.buf_stride = buf_row;
+        s.last = t > 0 ? &visits[((t + 1) & 1) * rows + band_row] : NULL;
+        s.now = &visits[(t & 1) * rows + band_row];
+        vfi_slab_preint1(&job, &s);
     }
     return VF_OK;
 }
@@ -240,16 +242,6 @@ static void faces_around(const row_job_t *job, int32_t v, int32_t lo, int32_t hi
         else
             vfi_faces_order0(job, v, (uint32_t)spans[n][0], (uint32_t)spans[n][1] + 1, preclass);
     }
-}
-
-/* The slice row that intermediate row v (inside the slice) samples, its index j and fraction fy to the next. */
-static inline const uint8_t *slice_row(const slice_place_t *sl, uint32_t row_bytes, uint32_t step, int32_t v,
-                                       uint32_t *j, uint32_t *fy)
-{
-    uint32_t y = (uint32_t)v * step - (uint32_t)sl->ov;
-    *j = y >> 16;
-    *fy = y & 0xFFFFu;
-    return sl->data + (size_t)*j * row_bytes;
 }
 
 static unsigned char *align_up(unsigned char *p)

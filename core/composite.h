@@ -89,7 +89,33 @@ typedef struct row_job {
 } row_job_t;
 
 void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass);
-void vfi_row_preint1(const row_job_t *job, run_merge_t *m);
+
+/* The rows [v_lo, v_hi] of a slab where both its slices are inside, in one call (composite_order1.c): what they
+ * share. The slab is job's (front, back, t, the buffers' shifts); the arrays are row v_lo's, row v_lo + k's are k
+ * strides further. */
+typedef struct vfi_slab_rows {
+    int32_t v_lo, v_hi;
+    const vfi_runs_t *runs;
+    uint32_t kc;                     /* the cell slab between the slices */
+    uint16_t *next, *pixels;         /* skip links and intermediate pixels */
+    size_t next_stride, pixel_stride;
+    uint32_t *front_buf, *back_buf;  /* the buffered positions, pixel u's at [u - job shift] */
+    size_t buf_stride;
+    const row_visits_t *last;        /* the runs walked by the slab before (theirs when .slab says so), or NULL */
+    row_visits_t *now;               /* and by this one */
+} vfi_slab_rows_t;
+
+void vfi_slab_preint1(row_job_t *job, const vfi_slab_rows_t *slab);
+
+/* The slice row that intermediate row v (inside the slice) samples, its index j and fraction fy to the next. */
+static inline const uint8_t *vfi_slice_row(const slice_place_t *sl, uint32_t row_bytes, uint32_t step, int32_t v,
+                                           uint32_t *j, uint32_t *fy)
+{
+    uint32_t y = (uint32_t)v * step - (uint32_t)sl->ov;
+    *j = y >> 16;
+    *fy = y & 0xFFFFu;
+    return sl->data + (size_t)*j * row_bytes;
+}
 
 /* Partial slabs (docs/algorithm.md, section 4c), composite_partial.c: row v's pixels [x, y) that a slab crosses
  * through a side face (preint1), or whose slice has a neighbour whose sample is outside (order 0). */
@@ -119,13 +145,20 @@ static inline uint32_t vfi_column(const slice_place_t *sl, uint32_t step, uint32
     return x >> 16;
 }
 
+/* Whether the job looks up bilinearly; never in a build without it (vf_config.h), whose compiler then leaves the
+ * code out. */
+static inline bool vfi_bilinear(const row_job_t *job)
+{
+    return VF_BILINEAR && job->bilinear;
+}
+
 /* Where a sample s (Q8.32) goes in the table: its nearest entry, or (bilinear) its position in Q.16; for
  * precision studies the sample is first rounded to fewer fraction bits. */
 static inline uint32_t vfi_position_of(const row_job_t *job, uint64_t s)
 {
     if (job->sample_shift)
         s = ((s + (UINT64_C(1) << (job->sample_shift - 1))) >> job->sample_shift) << job->sample_shift;
-    return job->bilinear ? vfi_position_of_sample(job->cls, s) : vfi_entry_of_sample(job->cls, s);
+    return vfi_bilinear(job) ? vfi_position_of_sample(job->cls, s) : vfi_entry_of_sample(job->cls, s);
 }
 
 /* The same for the sample at p with fractions fx, fy. */
@@ -158,7 +191,7 @@ static VF_ALWAYS_INLINE void vfi_segment_preint1(const row_job_t *job, uint32_t 
 {
     const vfi_lookup_ctx_t *c = &job->lookup;
     const size_t n = c->n;
-    if (job->bilinear) {
+    if (vfi_bilinear(job)) {
         uint32_t i, fi, j, fj, w[4], e[4][4];
         vfi_split_position(c->n, pos_f, &i, &fi);
         vfi_split_position(c->n, pos_b, &j, &fj);
@@ -194,7 +227,7 @@ static VF_ALWAYS_INLINE void vfi_segment_order0(const row_job_t *job, const uint
         vfi_lerp(e[0], e[2], fy);
         for (int k = 0; k < 4; k++)
             seg[k] = e[0][k];
-    } else if (job->bilinear) {
+    } else if (vfi_bilinear(job)) {
         uint32_t i, f, next_entry[4];
         vfi_split_position(c->n, vfi_table_position(job, p, fx, fy), &i, &f);
         vfi_fetch(c, i, seg);
@@ -286,6 +319,24 @@ static VF_ALWAYS_INLINE bool vfi_merge_next(run_merge_t *m, int32_t *a, int32_t 
     *a = lo;
     *b = hi;
     return true;
+}
+
+/* The union of a row's runs, clipped to the pixels [lo, hi] where both samples are inside, into walked; returns how
+ * many. A pass of its own, so that the merge's state has the registers to itself. */
+static VF_ALWAYS_INLINE uint32_t vfi_merge_runs(run_merge_t *m, int32_t lo, int32_t hi, vfi_span_t *walked)
+{
+    uint32_t count = 0;
+    int32_t a, b;
+    while (vfi_merge_next(m, &a, &b)) {
+        a = a > lo ? a : lo;
+        b = b < hi + 1 ? b : hi + 1;
+        if (a < b) {
+            walked[count].a = (uint32_t)a;
+            walked[count].b = (uint32_t)b;
+            count++;
+        }
+    }
+    return count;
 }
 
 #endif

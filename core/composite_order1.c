@@ -1,6 +1,6 @@
 /*
- * composite_order1.c: the rows of one slab in preint1 (docs/algorithm.md, sections 4 and 4b): each open pixel of
- * the visible runs takes the pre-integrated entry of its front and back sample.
+ * composite_order1.c: the rows of one slab in preint1 (docs/algorithm.md, sections 4 and 4b), all in one call: each
+ * open pixel of the visible runs takes the pre-integrated entry of its front and back sample.
  *
  * A slab's back sample is the next slab's front sample, so its table position is buffered. Whether a pixel's
  * buffered position is this slab's front is known per run rather than per pixel: it is exactly when the last slab
@@ -17,40 +17,47 @@
 #define MAX(a, b) ((a) > (b) ? (a) : (b))
 
 
-/* The arrays of one row of the plain path addressed by c = u - cu, the back slice's column of pixel u (the slice
- * buffer's rows have one element before column 0, for a front slice one column to the right of the back one). */
-typedef struct row_arrays {
-    uint32_t cu;
-    const uint8_t *top, *bottom;   /* the back sample's two slice rows */
+/* What the plain loop reads for one row. The arrays are addressed by c = u - cu, the back slice's column of pixel
+ * u (the slice buffer's rows have one element before column 0, for a front slice one column to the right of the
+ * back one); a sampled front at u - front_cu of its slice row. */
+typedef struct plain_row {
+    uint32_t cu;                     /* the back slice's first pixel */
+    const uint8_t *top, *bottom;     /* the back sample's two slice rows */
+    const uint8_t *front;            /* the front sample's first slice row */
     const uint32_t *front_buf;
     uint32_t *back_buf;
-    uint16_t *pixels;
-} row_arrays_t;
+    uint16_t *pixels, *next;
+    /* the same for every row of a slab */
+    uint32_t back_fx, back_fy, front_cu, front_fx, front_fy, row; /* Q0.16 fractions; bytes per slice row */
+    const uint16_t *table;
+    uint32_t n;
+    const vfi_demand_t *demand;      /* the 2D table is built as it is read (tables.h), or NULL */
+} plain_row_t;
 
 /* The default path (nearest lookup, 16-bit table, no lut, full precision), where preint1 frames spend their time:
- * the open pixels of [x, y), their front entries from the buffer (buffered) or sampled here. The loop keeps all it
- * reads in locals, so that the stores to the buffer and the pixels cannot make the compiler read it again; as
- * first written it kept eleven values on the stack and read them every segment.
- * Returns y, or, in a table built as read, the pixel whose entry was unbuilt, its back sample stored, with the
- * entry's front and back in *f, *b: the caller builds that diagonal and composites the pixel (plain_unbuilt).
- * The call in the loop would make it keep more on the stack: 3 instructions more a segment. */
-static VF_ALWAYS_INLINE uint32_t span_plain(const row_job_t *job, const row_arrays_t *ra, uint32_t x, uint32_t y,
-                                            bool buffered, bool n256, uint32_t *f, uint32_t *b)
+ * the open pixels from u, which is open, to y, their front entries from the buffer (buffered) or sampled here. The
+ * loop keeps all it reads in locals, so that the stores to the buffer and the pixels cannot make the compiler read
+ * it again; as first written it kept eleven values on the stack and read them every segment.
+ * Returns the first open pixel at or after y, or, in a table built as read, the pixel whose entry was unbuilt, its
+ * back sample stored, with the entry's front and back in *f, *b: the caller builds that diagonal and composites
+ * the pixel (plain_unbuilt). The call in the loop would make it keep more on the stack: 3 instructions more a
+ * segment. */
+static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256,
+                                            uint32_t *f, uint32_t *b)
 {
-    const uint32_t n = n256 ? 256 : job->lookup.n, cu = ra->cu, fx = job->back->fx, fy = job->back_fy;
-    const uint8_t *top = ra->top, *bottom = ra->bottom;
-    const uint32_t *front_buf = ra->front_buf;
-    uint32_t *back_buf = ra->back_buf;
-    const uint16_t *table = job->lookup.q15;
-    uint16_t *next = job->next, *pixels = ra->pixels;
-    for (uint32_t u = vfi_next_open(next, x); u < y; u = vfi_next_open(next, u + 1)) {
+    const uint32_t n = n256 ? 256 : pr->n, cu = pr->cu, fx = pr->back_fx, fy = pr->back_fy;
+    const uint8_t *top = pr->top, *bottom = pr->bottom;
+    const uint32_t *front_buf = pr->front_buf;
+    uint32_t *back_buf = pr->back_buf;
+    const uint16_t *table = pr->table;
+    uint16_t *next = pr->next, *pixels = pr->pixels;
+    for (; u < y; u = vfi_next_open(next, u + 1)) {
         const uint32_t c = u - cu;
         uint32_t row_f; /* front entry times N */
         if (buffered) {
             row_f = front_buf[c];
         } else {
-            const slice_place_t *fr = job->front;
-            uint64_t s = vfi_sample_at(job->row_data + (u - (uint32_t)fr->cu), job->row, fr->fx, job->front_fy);
+            uint64_t s = vfi_sample_at(pr->front + (u - pr->front_cu), pr->row, pr->front_fx, pr->front_fy);
             row_f = n * vfi_entry_of_sample_n(n, s);
         }
         const uint32_t pos_b = vfi_entry_of_sample_n(n, vfi_sample_rows(top + c, bottom + c, fx, fy));
@@ -64,29 +71,30 @@ static VF_ALWAYS_INLINE uint32_t span_plain(const row_job_t *job, const row_arra
             return u;
         }
     }
-    return y;
+    return u;
 }
 
 /* Pixel u's segment, entry (f, b), which span_plain found unbuilt: the diagonal built, then what the loop would do
- * with it. Returns the pixel to go on from. */
-static uint32_t plain_unbuilt(const row_job_t *job, const row_arrays_t *ra, uint32_t u, uint32_t f, uint32_t b)
+ * with it. Returns the next open pixel. */
+static uint32_t plain_unbuilt(const plain_row_t *pr, uint32_t u, uint32_t f, uint32_t b)
 {
-    vfi_preint_demand_diagonal(job->demand, f, b);
-    const uint16_t *e = job->lookup.q15 + ((size_t)f * job->lookup.n + b) * 4;
-    if (e[3] && vfi_blend_q15(ra->pixels + (size_t)(u - ra->cu) * 4, e))
-        job->next[u] = (uint16_t)(u + 1);
-    return u + 1;
+    vfi_preint_demand_diagonal(pr->demand, f, b);
+    const uint16_t *e = pr->table + ((size_t)f * pr->n + b) * 4;
+    if (e[3] && vfi_blend_q15(pr->pixels + (size_t)(u - pr->cu) * 4, e))
+        pr->next[u] = (uint16_t)(u + 1);
+    return vfi_next_open(pr->next, u + 1);
 }
 
-/* Any lookup, table format, correction, precision study or number of rays: the open pixels of [x, y). Nearest
- * positions are kept times N in the buffer (the front entry's row in the 2D table), bilinear ones as they are.
- * With one ray per voxel a pixel's column is u - cu at the slice's one fraction; with more each pixel has its own. */
-static VF_ALWAYS_INLINE void span_general_body(const row_job_t *job, uint32_t x, uint32_t y, bool buffered,
-                                               bool one_ray)
+/* Any lookup, table format, correction, precision study or number of rays: the open pixels from u, which is open, to
+ * y. Nearest positions are kept times N in the buffer (the front entry's row in the 2D table), bilinear ones as
+ * they are. With one ray per voxel a pixel's column is u - cu at the slice's one fraction; with more each pixel
+ * has its own. Returns the first open pixel at or after y. */
+static VF_ALWAYS_INLINE uint32_t span_general_body(const row_job_t *job, uint32_t u, uint32_t y, bool buffered,
+                                                   bool one_ray)
 {
     const slice_place_t *fr = job->front, *bk = job->back;
-    const uint32_t n = job->lookup.n, scale = job->bilinear ? 1 : n;
-    for (uint32_t u = vfi_next_open(job->next, x); u < y; u = vfi_next_open(job->next, u + 1)) {
+    const uint32_t n = job->lookup.n, scale = vfi_bilinear(job) ? 1 : n;
+    for (; u < y; u = vfi_next_open(job->next, u + 1)) {
         uint32_t fx, i, pos_f;
         if (buffered) {
             pos_f = job->front_buf[u - (uint32_t)job->front_shift];
@@ -98,75 +106,124 @@ static VF_ALWAYS_INLINE void span_general_body(const row_job_t *job, uint32_t x,
         uint32_t pos_b = vfi_table_position(job, job->back_row_data + i, one_ray ? bk->fx : fx, job->back_fy);
         job->back_buf[u - (uint32_t)job->back_shift] = pos_b * scale;
         uint32_t seg[4];
-        vfi_segment_preint1(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg);
+        vfi_segment_preint1(job, vfi_bilinear(job) ? pos_f : pos_f / n, pos_b, seg);
         if (vfi_composite_segment(job, job->pixels + (size_t)u * 4, seg))
             job->next[u] = (uint16_t)(u + 1);
     }
+    return u;
 }
 
-static void span_general(const row_job_t *job, uint32_t x, uint32_t y, bool buffered)
+static uint32_t span_general(const row_job_t *job, uint32_t u, uint32_t y, bool buffered)
 {
     if (VF_MAX_RAYS == 1 || job->step == 65536) /* constant in one-ray builds */
-        buffered ? span_general_body(job, x, y, true, true) : span_general_body(job, x, y, false, true);
-    else
-        buffered ? span_general_body(job, x, y, true, false) : span_general_body(job, x, y, false, false);
+        return buffered ? span_general_body(job, u, y, true, true) : span_general_body(job, u, y, false, true);
+    return buffered ? span_general_body(job, u, y, true, false) : span_general_body(job, u, y, false, false);
 }
 
-/* A row: its visible runs, each cut into spans whose fronts are all buffered or all sampled here. Specialised below
- * for the plain path with 256 entries (the default), the plain path and the general one. */
-static VF_ALWAYS_INLINE void row(const row_job_t *job, run_merge_t *m, bool plain, bool n256)
+/* A row's walked runs (vfi_merge_runs), each cut into spans whose fronts are all buffered or all sampled here. The
+ * plain path takes its arrays from pr, the general one from job. */
+static VF_ALWAYS_INLINE void row(const row_job_t *job, const plain_row_t *pr, const vfi_span_t *walked, uint32_t count,
+                                 const row_visits_t *last_row, bool plain, bool n256)
 {
-    const slice_place_t *fr = job->front, *bk = job->back;
-    const int32_t lo = MAX(fr->u_lo, bk->u_lo), hi = MIN(fr->u_hi, bk->u_hi); /* both samples inside */
-    const vfi_span_t *last = job->last ? job->last->span : NULL;
-    const uint32_t last_count = job->last ? job->last->count : 0;
-    vfi_span_t *walked = job->visits->span;
-    uint32_t k = 0, count = 0; /* k: the first of the last slab's runs that may reach the current pixel */
-    row_arrays_t ra;
-    ra.cu = (uint32_t)bk->cu;
-    ra.top = job->back_row_data;
-    ra.bottom = ra.top + job->row;
-    ra.front_buf = job->front_buf + (bk->cu - job->front_shift); /* slice buffer: -1, 0 or 1 */
-    ra.back_buf = job->back_buf + (bk->cu - job->back_shift);
-    ra.pixels = job->pixels + (size_t)ra.cu * 4;
-    int32_t a, b;
-    while (vfi_merge_next(m, &a, &b)) {
-        a = MAX(a, lo);
-        b = MIN(b, hi + 1);
-        if (a >= b)
-            continue;
-        walked[count].a = (uint32_t)a;
-        walked[count].b = (uint32_t)b;
-        count++;
-        for (uint32_t x = (uint32_t)a; x < (uint32_t)b;) {
-            while (k < last_count && last[k].b <= x)
+    const vfi_span_t *last = last_row ? last_row->span : NULL;
+    const uint32_t last_count = last_row ? last_row->count : 0;
+    uint16_t *next = plain ? pr->next : job->next;
+    uint32_t k = 0; /* the first of the last slab's runs that may reach the current pixel */
+    for (uint32_t w = 0; w < count; w++) {
+        const uint32_t b = walked[w].b;
+        /* each span starts at an open pixel, which the last span's loop found: pixels closed all the way cost
+         * nothing but the step past them */
+        for (uint32_t u = vfi_next_open(next, walked[w].a); u < b;) {
+            while (k < last_count && last[k].b <= u)
                 k++;
-            const bool buffered = k < last_count && last[k].a <= x;
-            const uint32_t end = buffered ? last[k].b : k < last_count ? last[k].a : (uint32_t)b;
-            const uint32_t y = MIN(end, (uint32_t)b);
+            const bool buffered = k < last_count && last[k].a <= u;
+            const uint32_t y = MIN(buffered ? last[k].b : k < last_count ? last[k].a : b, b);
             if (!plain) {
-                span_general(job, x, y, buffered);
-                x = y;
+                u = span_general(job, u, y, buffered);
                 continue;
             }
             uint32_t ef, eb; /* the entry span_plain found unbuilt */
-            x = buffered ? span_plain(job, &ra, x, y, true, n256, &ef, &eb)
-                         : span_plain(job, &ra, x, y, false, n256, &ef, &eb);
-            if (VF_TABLE_ON_DEMAND && x < y)
-                x = plain_unbuilt(job, &ra, x, ef, eb);
-            else
-                x = y;
+            u = buffered ? span_plain(pr, u, y, true, n256, &ef, &eb) : span_plain(pr, u, y, false, n256, &ef, &eb);
+            if (VF_TABLE_ON_DEMAND && u < y)
+                u = plain_unbuilt(pr, u, ef, eb);
         }
     }
-    job->visits->count = count;
 }
 
-void vfi_row_preint1(const row_job_t *job, run_merge_t *m)
+/* The runs the last slab walked in row v_lo + k, or NULL unless it was slab t - 1 */
+static inline const row_visits_t *last_visits(const vfi_slab_rows_t *s, uint32_t k, uint32_t t)
+{
+    return s->last && s->last[k].slab + 1 == t ? &s->last[k] : NULL;
+}
+
+/* The slab's rows. The plain path has one ray per voxel: every intermediate row samples the next slice row at the
+ * same fraction, so row v_lo + k's slice rows, runs and arrays are k rows, cell rows and strides after row v_lo's,
+ * and what its loops read is set up once (pr). The general path sets job's row fields for each row (with more rays
+ * the fraction and slice row are the row's own). */
+static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s, bool plain, bool n256)
+{
+    const slice_place_t *front = job->front, *back = job->back;
+    const int32_t lo = MAX(front->u_lo, back->u_lo), hi = MIN(front->u_hi, back->u_hi);
+    const uint32_t t = job->t, row_bytes = job->row, rows = (uint32_t)(s->v_hi - s->v_lo + 1);
+    const uint32_t *runs = s->runs->row_start + s->kc * s->runs->nj;
+    const uint16_t *pairs = s->runs->pairs;
+    plain_row_t pr;
+    uint32_t j_f, j_b;
+    const uint8_t *front_data = vfi_slice_row(front, row_bytes, job->step, s->v_lo, &j_f, &pr.front_fy);
+    const uint8_t *back_data = vfi_slice_row(back, row_bytes, job->step, s->v_lo, &j_b, &pr.back_fy);
+    if (plain) {
+        pr.cu = (uint32_t)back->cu;
+        pr.back_fx = back->fx;
+        pr.front_cu = (uint32_t)front->cu;
+        pr.front_fx = front->fx;
+        pr.row = row_bytes;
+        pr.table = job->lookup.q15;
+        pr.n = job->lookup.n;
+        pr.demand = job->demand;
+    }
+    const uint32_t *runs_f0 = runs + j_f, *runs_b0 = runs + j_b; /* row v_lo's */
+    /* the plain loops address the buffers by the back slice's column (a slice buffer's front one is -1, 0 or 1 off) */
+    uint32_t *front_buf = s->front_buf + (plain ? back->cu - job->front_shift : 0);
+    uint32_t *back_buf = s->back_buf + (plain ? back->cu - job->back_shift : 0);
+    for (uint32_t k = 0; k < rows; k++) {
+        if (!plain) {
+            job->row_data = vfi_slice_row(front, row_bytes, job->step, s->v_lo + (int32_t)k, &j_f, &job->front_fy);
+            job->back_row_data = vfi_slice_row(back, row_bytes, job->step, s->v_lo + (int32_t)k, &j_b, &job->back_fy);
+        }
+        const uint32_t *runs_f = plain ? runs_f0 + k : runs + j_f, *runs_b = plain ? runs_b0 + k : runs + j_b;
+        if (runs_f[0] == runs_f[1] && runs_b[0] == runs_b[1])
+            continue; /* nothing visible: the row is not walked, and the next slab samples its fronts */
+        if (plain) {
+            pr.top = back_data + (size_t)k * row_bytes;
+            pr.bottom = pr.top + row_bytes;
+            pr.front = front_data + (size_t)k * row_bytes;
+            pr.front_buf = front_buf + (size_t)k * s->buf_stride;
+            pr.back_buf = back_buf + (size_t)k * s->buf_stride;
+            pr.next = s->next + (size_t)k * s->next_stride;
+            pr.pixels = s->pixels + (size_t)k * s->pixel_stride + (size_t)pr.cu * 4;
+        } else {
+            job->front_buf = front_buf + (size_t)k * s->buf_stride;
+            job->back_buf = back_buf + (size_t)k * s->buf_stride;
+            job->next = s->next + (size_t)k * s->next_stride;
+            job->pixels = s->pixels + (size_t)k * s->pixel_stride;
+        }
+        const row_visits_t *last = last_visits(s, k, t);
+        row_visits_t *now = &s->now[k];
+        now->slab = t;
+        run_merge_t m;
+        vfi_merge_init(&m, plain ? 16 : job->step_shift, pairs + runs_f[0], pairs + runs_f[1], front,
+                       pairs + runs_b[0], pairs + runs_b[1], back);
+        now->count = vfi_merge_runs(&m, lo, hi, now->span);
+        row(job, &pr, now->span, now->count, last, plain, n256);
+    }
+}
+
+void vfi_slab_preint1(row_job_t *job, const vfi_slab_rows_t *s)
 {
     if (!job->plain)
-        row(job, m, false, false);
+        slab_rows(job, s, false, false);
     else if (job->lookup.n == 256)
-        row(job, m, true, true);
+        slab_rows(job, s, true, true);
     else
-        row(job, m, true, false);
+        slab_rows(job, s, true, false);
 }

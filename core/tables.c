@@ -46,6 +46,7 @@ void vfi_point_entries(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_o
     }
 }
 
+#if VF_TABLE_ORACLE
 /* The oracle: docs/algorithm.md section 2 read literally, each entry on its own. It shares nothing with the
  * incremental builder (preint.c) but the exponential, the classification and the final rounding (table_store.h),
  * so that a slip in how that one groups or evaluates intervals cannot hide in both. */
@@ -77,6 +78,7 @@ void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, c
             store(out, (size_t)f * n + b, &acc);
         }
 }
+#endif
 
 /* 1 - exp(-x), x in Q.28; Q.30. */
 static uint32_t opacity_q30(uint64_t tau_length_q28)
@@ -183,8 +185,10 @@ static vf_status_t build(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, int w
             vfi_point_table(&cls, slab_q16, to);
         else if (which == 1 + VF_BUILDER_INCREMENTAL)
             vfi_preint_table_incremental(&cls, slab_q16, &scratch, to);
+#if VF_TABLE_ORACLE
         else
             vfi_preint_table_bruteforce(&cls, slab_q16, &scratch, to);
+#endif
     }
     vfi_arena_rewind(arena, mark);
     return s;
@@ -200,5 +204,7 @@ vf_status_t vf_preint_table(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf
 {
     if ((unsigned)builder >= VF_BUILDER_COUNT)
         return VF_ERR_ARG;
+    if (builder == VF_BUILDER_BRUTEFORCE && !VF_TABLE_ORACLE)
+        return VF_ERR_UNSUPPORTED;
     return build(tf, n, slab_q16, 1 + (int)builder, scratch, out);
 }

@@ -91,8 +91,10 @@ void vfi_point_entries(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_o
  * Incremental subrange integration (Lum, Wilson and Ma 2004), O(N^2), in preint.c: along a diagonal |b - f| = r
  * every interval has length d / r; in blocks of r intervals, each entry joins a suffix of one block (kept in
  * scratch) with a prefix of the next (grown one interval an entry). */
+#if VF_TABLE_ORACLE
 void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
                                  vfi_table_out_t out);
+#endif
 /* The incremental builder in parts: part (0 .. parts - 1) writes its share of the diagonals and no other entry, so
  * that parts may run side by side, each with its own scratch; all parts together give the whole table, to the
  * bit. vfi_preint_table_incremental is the one part of one. */

@@ -40,6 +40,19 @@
 #define VF_TABLE_ON_DEMAND 1
 #endif
 
+/* The brute-force O(N^3) table builder, the incremental builder's test oracle (vf_preint_table with
+ * VF_BUILDER_BRUTEFORCE, about 500 bytes of Cortex-M4 code): 0 leaves it out, and asking for it gives
+ * VF_ERR_UNSUPPORTED. Renderers never use it. */
+#ifndef VF_TABLE_ORACLE
+#define VF_TABLE_ORACLE 1
+#endif
+
+/* Bilinear table lookup (vf_params_t.lookup, about 450 bytes of Cortex-M4 code): 0 leaves it out, and a renderer
+ * asked for it gets VF_ERR_UNSUPPORTED. */
+#ifndef VF_BILINEAR
+#define VF_BILINEAR 1
+#endif
+
 /* Most control points in a transfer function. */
 #ifndef VF_MAX_TF_POINTS
 #define VF_MAX_TF_POINTS 1024

@@ -107,7 +107,8 @@ typedef enum vf_mode {
 
 typedef enum vf_lookup {
     VF_LOOKUP_NEAREST,  /* the nearest table entry of each sample */
-    VF_LOOKUP_BILINEAR, /* interpolate between entries (1D for point, 2D for preint1) */
+    VF_LOOKUP_BILINEAR, /* interpolate between entries (1D for point, 2D for preint1); VF_ERR_UNSUPPORTED in
+                         * builds without it (VF_BILINEAR, vf_config.h) */
     VF_LOOKUP_COUNT
 } vf_lookup_t;
 
@@ -292,7 +293,8 @@ vf_status_t vf_render(vf_renderer_t *renderer, const vf_view_t *view, const vf_i
 
 typedef enum vf_builder {
     VF_BUILDER_INCREMENTAL, /* O(N^2) incremental subrange integration (Lum et al. 2004): what renderers use */
-    VF_BUILDER_BRUTEFORCE,  /* O(N^3), every entry composited interval by interval: the oracle */
+    VF_BUILDER_BRUTEFORCE,  /* O(N^3), every entry composited interval by interval: the oracle (VF_ERR_UNSUPPORTED
+                             * in builds without it, VF_TABLE_ORACLE) */
     VF_BUILDER_COUNT
 } vf_builder_t;
 

@@ -1,9 +1,11 @@
 /*
  * small_config.c: one program built twice by small_config.sh, against the whole core and against the smallest
- * configuration of core/vf_config.h (the microcontroller's: no partial slabs, rays, table parts or view tables).
- * It prints, a line each, the status of creating a renderer with more than one ray and with partial slabs, and a
- * hash of every frame of a few scenes and turns with one ray and whole slabs; the script requires the small build
- * to refuse the options left out (VF_ERR_UNSUPPORTED) and to render every frame exactly as the whole core does.
+ * configuration of core/vf_config.h (the microcontroller's: no partial slabs, rays, table parts, view tables,
+ * tables built as read, bilinear lookup or brute-force table builder). It prints, a line each, the status of
+ * creating a renderer with more than one ray, with partial slabs and with bilinear lookup and of building a table
+ * by brute force, and a hash of every frame of a few scenes and turns
+ * with one ray, whole slabs and nearest lookup; the script requires the small build to refuse the options left out
+ * (VF_ERR_UNSUPPORTED) and to render every frame exactly as the whole core does.
  */
 #include <stdint.h>
 #include <stdio.h>
@@ -125,6 +127,18 @@ static const char *status_name(vf_status_t s)
     return s == VF_OK ? "VF_OK" : s == VF_ERR_UNSUPPORTED ? "VF_ERR_UNSUPPORTED" : vf_status_text(s);
 }
 
+/* A 16-entry table built by the brute-force oracle */
+static vf_status_t oracle_table(void)
+{
+    static unsigned char scratch[1 << 16];
+    static uint16_t table[16 * 16 * 4];
+    const vf_tf_point_t points[2] = {{0, 0, 0, 0, 0}, {255 << 8, 65535, 65535, 65535, 32768}};
+    vf_tf_t tf = {points, 2};
+    vf_arena_t arena;
+    vf_arena_init(&arena, scratch, sizeof scratch);
+    return vf_preint_table(&tf, 16, 65536, VF_BUILDER_BRUTEFORCE, &arena, table);
+}
+
 int main(void)
 {
     fill_volume();
@@ -138,9 +152,13 @@ int main(void)
     vf_params_default(&p);
     p.partial_slabs = 1;
     printf("partial slabs: %s\n", status_name(render(&p, &views[0], &h)));
+    vf_params_default(&p);
+    p.lookup = VF_LOOKUP_BILINEAR;
+    printf("bilinear: %s\n", status_name(render(&p, &views[0], &h)));
+    printf("brute-force table: %s\n", status_name(oracle_table()));
 
     for (int mode = 0; mode < VF_MODE_COUNT; mode++)
-        for (int lookup = 0; lookup < VF_LOOKUP_COUNT; lookup++)
+        for (int lookup = VF_LOOKUP_NEAREST; lookup == VF_LOOKUP_NEAREST; lookup++) /* the small core's lookup */
             for (int correction = 0; correction < 2; correction++)
                 for (int v = 0; v < 3; v++) {
                     vf_params_default(&p);

@@ -3,8 +3,8 @@
 # boards/mps2-an386), runs it in qemu-system-arm, and requires the frame hash it prints to equal the host's
 # `volfix-sim render SCENE --hash`, for the default scene and for one with every option changed; the firmware
 # must end through semihosting with status 0. Also: the comparison tells another view's frame apart, a short
-# arena ends in VF_ERR_NOMEM with status 2, the core at -Os calls nothing but libgcc's helpers, and its code
-# stays within the 24 KB budget.
+# arena ends in VF_ERR_NOMEM with status 2, an option the build leaves out in VF_ERR_UNSUPPORTED with status 2,
+# the core at -Os calls nothing but libgcc's helpers, and its code stays within the 24 KB budget.
 cd "$(dirname "$0")/../.." || exit 2
 build=${BUILD:-build}
 sim=$build/volfix-sim
@@ -28,10 +28,10 @@ fi
 # The shared bucky volume when it is there; a fresh checkout without ../shared/data gets a phantom of its size.
 if [ -f "$data/bucky.nhdr" ]; then volume=$data/bucky.nhdr; else volume=phantom:shepp-logan:32; fi
 default="$volume --size 64x64 --format rgb565 --mode preint1 --preset ramp --view 30,20"
-# every option away from its default, a roll, a zoom and another principal axis; 5-row bands do not divide the
-# intermediate image, so the last band is a short one
+# every option the firmware's core has away from its default (bilinear lookup it leaves out: 4. below), a roll, a
+# zoom and another principal axis; 5-row bands do not divide the intermediate image, so the last band is a short one
 changed="$volume --size 48x40 --format xrgb8888 --mode preint1 --preset sharp --view 200,-40,15 --zoom 1.3"
-changed="$changed --table-size 64 --table-bits 8 --lookup bilinear --correction lut --buffer image"
+changed="$changed --table-size 64 --table-bits 8 --correction lut --buffer image"
 
 # firmware NAME SCENE BAND_ROWS [GEN_OPTS]: build it and run it; $tmp/NAME.out gets its output, $tmp/NAME.status
 # its exit status (124: the timeout ended it)
@@ -120,5 +120,15 @@ if firmware short "$changed" 5 "--arena-bytes $short"; then
         ok "a short arena ends in VF_ERR_NOMEM, with the bytes needed, and exit status 2"
     else
         fail "short arena" "status $status: $(tr '\n' ' ' <"$tmp/short.out")"
+    fi
+fi
+
+# 4. an option the firmware's core leaves out (MCU_FEATURES: -DVF_BILINEAR=0) is refused, with exit status 2
+if firmware bilinear "$default --lookup bilinear" 8; then
+    status=$(cat "$tmp/bilinear.status")
+    if [ "$status" = 2 ] && grep -q '^vf_renderer_create: not supported by this build$' "$tmp/bilinear.out"; then
+        ok "bilinear lookup, which the firmware's core leaves out, ends in VF_ERR_UNSUPPORTED and exit status 2"
+    else
+        fail "bilinear refused" "status $status: $(tr '\n' ' ' <"$tmp/bilinear.out")"
     fi
 fi
