@@ -1,0 +1,147 @@
+/*
+ * test_merge.c: the union of a slab row's runs (core/composite.h), which decides the pixels a slab walks and, in the
+ * runs it records, where the next slab finds its fronts buffered: a pixel too many there would read a stale front.
+ * vfi_merge_runs (two slices' cell rows, two streams) and vfi_merge_one_row (both slices on one cell row, columns a
+ * pixel apart) against brute force: the pixels each run covers set in a bitmap, clipped, read back as maximal
+ * intervals (runs that overlap or touch are one interval there, as the merges join them).
+ */
+#include <stdint.h>
+#include <string.h>
+
+#include "check.h"
+#include "composite.h"
+
+#define CELLS 300     /* cells in a row */
+#define PIXELS 400    /* pixels of the intermediate row: cells + column offsets below 80 */
+#define MAX_PAIRS 400 /* (skip, length) pairs, at most a run every other cell */
+
+static uint64_t rng = 0x3C6EF372FE94F82Bu;
+
+/* A random run list of a cell row as runs.c writes it: (skip, length) pairs, the first skip 0 or more, the others 1
+ * or more (a run ends at an invisible cell), every length 1 or more; dense, sparse, or with single gaps (which the
+ * widened runs of vfi_merge_one_row then join). Returns the number of uint16 values. */
+static uint32_t random_runs(uint16_t *pairs)
+{
+    const uint32_t style = check_below(&rng, 4);
+    uint32_t n = 0, cell = 0;
+    for (;;) {
+        uint32_t skip = style == 0 ? 1 : style == 1 ? 1 + check_below(&rng, 3) : 1 + check_below(&rng, 40);
+        if (n == 0)
+            skip = check_below(&rng, 3) == 0 ? 0 : skip;
+        const uint32_t length = 1 + check_below(&rng, style == 3 ? 60 : 8);
+        if (cell + skip + length > CELLS)
+            return n;
+        pairs[n++] = (uint16_t)skip;
+        pairs[n++] = (uint16_t)length;
+        cell += skip + length;
+    }
+}
+
+/* The pixels of a row's runs at column offset cu, set in covered */
+static void cover(const uint16_t *pairs, uint32_t n, int32_t cu, uint8_t *covered)
+{
+    int32_t cell = 0;
+    for (uint32_t k = 0; k < n; k += 2) {
+        cell += pairs[k];
+        for (int32_t c = cell; c < cell + pairs[k + 1]; c++)
+            covered[c + cu] = 1;
+        cell += pairs[k + 1];
+    }
+}
+
+/* The maximal intervals of covered pixels in [lo, hi] */
+static uint32_t intervals(const uint8_t *covered, int32_t lo, int32_t hi, vfi_span_t *out)
+{
+    uint32_t count = 0;
+    for (int32_t u = lo < 0 ? 0 : lo; u <= hi && u < PIXELS; u++) {
+        if (!covered[u])
+            continue;
+        int32_t end = u;
+        while (end + 1 <= hi && end + 1 < PIXELS && covered[end + 1])
+            end++;
+        out[count].a = (uint32_t)u;
+        out[count].b = (uint32_t)end + 1;
+        count++;
+        u = end;
+    }
+    return count;
+}
+
+static int same(const vfi_span_t *a, uint32_t na, const vfi_span_t *b, uint32_t nb)
+{
+    return na == nb && memcmp(a, b, sizeof *a * na) == 0;
+}
+
+/* Both slices on one cell row with column offsets a pixel or none apart, either way round, clipped anywhere: the
+ * one-stream union equals brute force and the two-stream merge of the same row twice. */
+static void one_row_is_the_union(void)
+{
+    uint16_t pairs[MAX_PAIRS];
+    vfi_span_t want[PIXELS], one[PIXELS], two[PIXELS];
+    for (int trial = 0; trial < 20000; trial++) {
+        const uint32_t n = random_runs(pairs);
+        slice_place_t front, back;
+        memset(&front, 0, sizeof front);
+        memset(&back, 0, sizeof back);
+        front.cu = 1 + (int32_t)check_below(&rng, 60);
+        back.cu = front.cu + (int32_t)check_below(&rng, 3) - 1;
+        const int32_t lo = (int32_t)check_below(&rng, 80), hi = lo + (int32_t)check_below(&rng, PIXELS - 80);
+        uint8_t covered[PIXELS] = {0};
+        cover(pairs, n, front.cu, covered);
+        cover(pairs, n, back.cu, covered);
+        const uint32_t nw = intervals(covered, lo, hi, want);
+        const int32_t cu_lo = front.cu < back.cu ? front.cu : back.cu, cu_hi = front.cu > back.cu ? front.cu : back.cu;
+        const uint32_t n1 = vfi_merge_one_row(pairs, pairs + n, cu_lo, cu_hi, lo, hi, one);
+        run_merge_t m;
+        vfi_merge_init(&m, 16, pairs, pairs + n, &front, pairs, pairs + n, &back);
+        const uint32_t n2 = vfi_merge_runs(&m, lo, hi, two);
+        CHECK_MSG(same(one, n1, want, nw), "trial %d: one row gave %u runs, brute force %u (cu %d and %d, clip %d..%d)",
+                  trial, n1, nw, front.cu, back.cu, lo, hi);
+        CHECK_MSG(same(two, n2, want, nw), "trial %d: two streams gave %u runs, brute force %u", trial, n2, nw);
+    }
+}
+
+/* Two different cell rows (the general case), offsets up to a pixel apart: the two-stream merge is the union. */
+static void two_rows_are_the_union(void)
+{
+    uint16_t pairs_f[MAX_PAIRS], pairs_b[MAX_PAIRS];
+    vfi_span_t want[PIXELS], got[PIXELS];
+    for (int trial = 0; trial < 20000; trial++) {
+        const uint32_t nf = random_runs(pairs_f), nb = random_runs(pairs_b);
+        slice_place_t front, back;
+        memset(&front, 0, sizeof front);
+        memset(&back, 0, sizeof back);
+        front.cu = 1 + (int32_t)check_below(&rng, 60);
+        back.cu = front.cu + (int32_t)check_below(&rng, 3) - 1;
+        const int32_t lo = (int32_t)check_below(&rng, 80), hi = lo + (int32_t)check_below(&rng, PIXELS - 80);
+        uint8_t covered[PIXELS] = {0};
+        cover(pairs_f, nf, front.cu, covered);
+        cover(pairs_b, nb, back.cu, covered);
+        const uint32_t nw = intervals(covered, lo, hi, want);
+        run_merge_t m;
+        vfi_merge_init(&m, 16, pairs_f, pairs_f + nf, &front, pairs_b, pairs_b + nb, &back);
+        const uint32_t n = vfi_merge_runs(&m, lo, hi, got);
+        CHECK_MSG(same(got, n, want, nw), "trial %d: %u runs, brute force %u", trial, n, nw);
+    }
+}
+
+/* The cases the joins turn on, by hand: runs a cell apart join once widened by a pixel and stay apart without;
+ * an empty row; a clip that leaves nothing, and one that cuts a run. */
+static void by_hand(void)
+{
+    const uint16_t gap1[] = {0, 2, 1, 3}; /* cells 0-1 and 3-5 */
+    vfi_span_t s[4];
+    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 11, 0, 100, s), 1u); /* pixels 10-11 | 12-13 and 13-16 | 14-17 */
+    CHECK_EQ(s[0].a, 10u);
+    CHECK_EQ(s[0].b, 17u);
+    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 10, 0, 100, s), 2u);
+    CHECK(s[0].a == 10 && s[0].b == 12 && s[1].a == 13 && s[1].b == 16);
+    CHECK_EQ(vfi_merge_one_row(gap1, gap1, 10, 11, 0, 100, s), 0u);
+    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 11, 20, 100, s), 0u);
+    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 11, 12, 14, s), 1u);
+    CHECK(s[0].a == 12 && s[0].b == 15);
+}
+
+CHECK_CASES({"one_row_is_the_union", one_row_is_the_union}, {"two_rows_are_the_union", two_rows_are_the_union},
+            {"by_hand", by_hand});
+CHECK_RUN("core/merge")
