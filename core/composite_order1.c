@@ -182,8 +182,6 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
         pr.demand = job->demand;
     }
     const uint32_t *runs_f0 = runs + j_f, *runs_b0 = runs + j_b; /* row v_lo's */
-    const bool one_row = j_f == j_b; /* for every row of the slab, in the plain path */
-    const int32_t cu_lo = MIN(front->cu, back->cu), cu_hi = MAX(front->cu, back->cu);
     /* the plain loops address the buffers by the back slice's column (a slice buffer's front one is -1, 0 or 1 off) */
     uint32_t *front_buf = s->front_buf + (plain ? back->cu - job->front_shift : 0);
     uint32_t *back_buf = s->back_buf + (plain ? back->cu - job->back_shift : 0);
@@ -212,14 +210,10 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
         const row_visits_t *last = last_visits(s, k, t);
         row_visits_t *now = &s->now[k];
         now->slab = t;
-        if (plain && one_row) {
-            now->count = vfi_merge_one_row(pairs + runs_f[0], pairs + runs_f[1], cu_lo, cu_hi, lo, hi, now->span);
-        } else {
-            run_merge_t m;
-            vfi_merge_init(&m, plain ? 16 : job->step_shift, pairs + runs_f[0], pairs + runs_f[1], front,
-                           pairs + runs_b[0], pairs + runs_b[1], back);
-            now->count = vfi_merge_runs(&m, lo, hi, now->span);
-        }
+        run_merge_t m;
+        vfi_merge_init(&m, plain ? 16 : job->step_shift, pairs + runs_f[0], pairs + runs_f[1], front,
+                       pairs + runs_b[0], pairs + runs_b[1], back);
+        now->count = vfi_merge_runs(&m, lo, hi, now->span);
         row(job, &pr, now->span, now->count, last, plain, n256);
     }
 }

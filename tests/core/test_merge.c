@@ -1,9 +1,8 @@
 /*
- * test_merge.c: the union of a slab row's runs (core/composite.h), which decides the pixels a slab walks and, in the
- * runs it records, where the next slab finds its fronts buffered: a pixel too many there would read a stale front.
- * vfi_merge_runs (two slices' cell rows, two streams) and vfi_merge_one_row (both slices on one cell row, columns a
- * pixel apart) against brute force: the pixels each run covers set in a bitmap, clipped, read back as maximal
- * intervals (runs that overlap or touch are one interval there, as the merges join them).
+ * test_merge.c: the union of a slab row's runs (core/composite.h: vfi_merge_runs), which decides the pixels a slab
+ * walks and, in the runs it records, where the next slab finds its fronts buffered: a pixel too many there would
+ * read a stale front. Against brute force: the pixels each slice's runs cover set in a bitmap, clipped, read back
+ * as maximal intervals (runs that overlap or touch are one interval there, as the merge joins them).
  */
 #include <stdint.h>
 #include <string.h>
@@ -19,7 +18,7 @@ static uint64_t rng = 0x3C6EF372FE94F82Bu;
 
 /* A random run list of a cell row as runs.c writes it: (skip, length) pairs, the first skip 0 or more, the others 1
  * or more (a run ends at an invisible cell), every length 1 or more; dense, sparse, or with single gaps (which the
- * widened runs of vfi_merge_one_row then join). Returns the number of uint16 values. */
+ * other slice's runs, a pixel off, fill). Returns the number of uint16 values. */
 static uint32_t random_runs(uint16_t *pairs)
 {
     const uint32_t style = check_below(&rng, 4);
@@ -72,12 +71,12 @@ static int same(const vfi_span_t *a, uint32_t na, const vfi_span_t *b, uint32_t 
     return na == nb && memcmp(a, b, sizeof *a * na) == 0;
 }
 
-/* Both slices on one cell row with column offsets a pixel or none apart, either way round, clipped anywhere: the
- * one-stream union equals brute force and the two-stream merge of the same row twice. */
+/* Both slices on one cell row, their column offsets a pixel or none apart, either way round, clipped anywhere (the
+ * common case: a small vertical shear): the merge of the row with itself is the union. */
 static void one_row_is_the_union(void)
 {
     uint16_t pairs[MAX_PAIRS];
-    vfi_span_t want[PIXELS], one[PIXELS], two[PIXELS];
+    vfi_span_t want[PIXELS], got[PIXELS];
     for (int trial = 0; trial < 20000; trial++) {
         const uint32_t n = random_runs(pairs);
         slice_place_t front, back;
@@ -90,14 +89,11 @@ static void one_row_is_the_union(void)
         cover(pairs, n, front.cu, covered);
         cover(pairs, n, back.cu, covered);
         const uint32_t nw = intervals(covered, lo, hi, want);
-        const int32_t cu_lo = front.cu < back.cu ? front.cu : back.cu, cu_hi = front.cu > back.cu ? front.cu : back.cu;
-        const uint32_t n1 = vfi_merge_one_row(pairs, pairs + n, cu_lo, cu_hi, lo, hi, one);
         run_merge_t m;
         vfi_merge_init(&m, 16, pairs, pairs + n, &front, pairs, pairs + n, &back);
-        const uint32_t n2 = vfi_merge_runs(&m, lo, hi, two);
-        CHECK_MSG(same(one, n1, want, nw), "trial %d: one row gave %u runs, brute force %u (cu %d and %d, clip %d..%d)",
-                  trial, n1, nw, front.cu, back.cu, lo, hi);
-        CHECK_MSG(same(two, n2, want, nw), "trial %d: two streams gave %u runs, brute force %u", trial, n2, nw);
+        const uint32_t ng = vfi_merge_runs(&m, lo, hi, got);
+        CHECK_MSG(same(got, ng, want, nw), "trial %d: %u runs, brute force %u (cu %d and %d, clip %d..%d)", trial, ng,
+                  nw, front.cu, back.cu, lo, hi);
     }
 }
 
@@ -125,20 +121,29 @@ static void two_rows_are_the_union(void)
     }
 }
 
-/* The cases the joins turn on, by hand: runs a cell apart join once widened by a pixel and stay apart without;
- * an empty row; a clip that leaves nothing, and one that cuts a run. */
+/* The joins by hand: a row's runs a cell apart, at columns a pixel apart, join; at the same columns they do not; an
+ * empty row; a clip that leaves nothing, and one that cuts a run. */
 static void by_hand(void)
 {
     const uint16_t gap1[] = {0, 2, 1, 3}; /* cells 0-1 and 3-5 */
+    slice_place_t a, b;
+    memset(&a, 0, sizeof a);
+    memset(&b, 0, sizeof b);
+    a.cu = 10, b.cu = 11;
     vfi_span_t s[4];
-    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 11, 0, 100, s), 1u); /* pixels 10-11 | 12-13 and 13-16 | 14-17 */
-    CHECK_EQ(s[0].a, 10u);
-    CHECK_EQ(s[0].b, 17u);
-    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 10, 0, 100, s), 2u);
+    run_merge_t m;
+    vfi_merge_init(&m, 16, gap1, gap1 + 4, &a, gap1, gap1 + 4, &b); /* 10-11 | 13-15 and 11-12 | 14-16 */
+    CHECK_EQ(vfi_merge_runs(&m, 0, 100, s), 1u);
+    CHECK(s[0].a == 10 && s[0].b == 17);
+    vfi_merge_init(&m, 16, gap1, gap1 + 4, &a, gap1, gap1 + 4, &a);
+    CHECK_EQ(vfi_merge_runs(&m, 0, 100, s), 2u);
     CHECK(s[0].a == 10 && s[0].b == 12 && s[1].a == 13 && s[1].b == 16);
-    CHECK_EQ(vfi_merge_one_row(gap1, gap1, 10, 11, 0, 100, s), 0u);
-    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 11, 20, 100, s), 0u);
-    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 11, 12, 14, s), 1u);
+    vfi_merge_init(&m, 16, gap1, gap1, &a, gap1, gap1, &b);
+    CHECK_EQ(vfi_merge_runs(&m, 0, 100, s), 0u);
+    vfi_merge_init(&m, 16, gap1, gap1 + 4, &a, gap1, gap1 + 4, &b);
+    CHECK_EQ(vfi_merge_runs(&m, 20, 100, s), 0u);
+    vfi_merge_init(&m, 16, gap1, gap1 + 4, &a, gap1, gap1 + 4, &b);
+    CHECK_EQ(vfi_merge_runs(&m, 12, 14, s), 1u);
     CHECK(s[0].a == 12 && s[0].b == 15);
 }
 
