@@ -145,20 +145,13 @@ static inline uint32_t vfi_column(const slice_place_t *sl, uint32_t step, uint32
     return x >> 16;
 }
 
-/* Whether the job looks up bilinearly; never in a build without it (vf_config.h), whose compiler then leaves the
- * code out. */
-static inline bool vfi_bilinear(const row_job_t *job)
-{
-    return VF_BILINEAR && job->bilinear;
-}
-
 /* Where a sample s (Q8.32) goes in the table: its nearest entry, or (bilinear) its position in Q.16; for
  * precision studies the sample is first rounded to fewer fraction bits. */
 static inline uint32_t vfi_position_of(const row_job_t *job, uint64_t s)
 {
     if (job->sample_shift)
         s = ((s + (UINT64_C(1) << (job->sample_shift - 1))) >> job->sample_shift) << job->sample_shift;
-    return vfi_bilinear(job) ? vfi_position_of_sample(job->cls, s) : vfi_entry_of_sample(job->cls, s);
+    return job->bilinear ? vfi_position_of_sample(job->cls, s) : vfi_entry_of_sample(job->cls, s);
 }
 
 /* The same for the sample at p with fractions fx, fy. */
@@ -191,7 +184,7 @@ static VF_ALWAYS_INLINE void vfi_segment_preint1(const row_job_t *job, uint32_t 
 {
     const vfi_lookup_ctx_t *c = &job->lookup;
     const size_t n = c->n;
-    if (vfi_bilinear(job)) {
+    if (job->bilinear) {
         uint32_t i, fi, j, fj, w[4], e[4][4];
         vfi_split_position(c->n, pos_f, &i, &fi);
         vfi_split_position(c->n, pos_b, &j, &fj);
@@ -227,7 +220,7 @@ static VF_ALWAYS_INLINE void vfi_segment_order0(const row_job_t *job, const uint
         vfi_lerp(e[0], e[2], fy);
         for (int k = 0; k < 4; k++)
             seg[k] = e[0][k];
-    } else if (vfi_bilinear(job)) {
+    } else if (job->bilinear) {
         uint32_t i, f, next_entry[4];
         vfi_split_position(c->n, vfi_table_position(job, p, fx, fy), &i, &f);
         vfi_fetch(c, i, seg);

@@ -93,7 +93,7 @@ static VF_ALWAYS_INLINE uint32_t span_general_body(const row_job_t *job, uint32_
                                                    bool one_ray)
 {
     const slice_place_t *fr = job->front, *bk = job->back;
-    const uint32_t n = job->lookup.n, scale = vfi_bilinear(job) ? 1 : n;
+    const uint32_t n = job->lookup.n, scale = job->bilinear ? 1 : n;
     for (; u < y; u = vfi_next_open(job->next, u + 1)) {
         uint32_t fx, i, pos_f;
         if (buffered) {
@@ -106,7 +106,7 @@ static VF_ALWAYS_INLINE uint32_t span_general_body(const row_job_t *job, uint32_
         uint32_t pos_b = vfi_table_position(job, job->back_row_data + i, one_ray ? bk->fx : fx, job->back_fy);
         job->back_buf[u - (uint32_t)job->back_shift] = pos_b * scale;
         uint32_t seg[4];
-        vfi_segment_preint1(job, vfi_bilinear(job) ? pos_f : pos_f / n, pos_b, seg);
+        vfi_segment_preint1(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg);
         if (vfi_composite_segment(job, job->pixels + (size_t)u * 4, seg))
             job->next[u] = (uint16_t)(u + 1);
     }

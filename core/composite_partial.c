@@ -179,7 +179,7 @@ static uint32_t preint1_transmittance(const row_job_t *job, uint32_t pos_f, uint
         return transmittance_of_opacity_q30(MIN(seg[3], VFI_ONE_Q15), rho_q16);
     uint64_t depth[4];
     uint32_t weight[4];
-    if (!vfi_bilinear(job)) {
+    if (!job->bilinear) {
         depth[0] = depth_of_entries(job, pos_f, pos_b);
         weight[0] = ONE_Q16;
         return transmittance_q30(depth, weight, 1, rho_q16);
@@ -208,7 +208,7 @@ static uint32_t order0_transmittance(const row_job_t *job, const uint8_t *p, uin
         const uint16_t *of = job->cls->entry_of_scalar;
         entry[0] = of[p[0]], entry[1] = of[p[1]], entry[2] = of[p[job->row]], entry[3] = of[p[job->row + 1]];
         count = 4;
-    } else if (vfi_bilinear(job)) {
+    } else if (job->bilinear) {
         uint32_t i, f;
         vfi_split_position(job->lookup.n, vfi_table_position(job, p, fx, fy), &i, &f);
         entry[0] = i, entry[1] = i + 1, weight[0] = ONE_Q16 - f, weight[1] = f;

@@ -317,8 +317,7 @@ static vf_status_t check_params(const vf_params_t *p)
         return VF_ERR_ARG;
     /* options this build leaves out (vf_config.h); and partial slabs not with the lut, whose Q1.15 knots leave
      * too few bits of a nearly opaque slab's transmittance for a part of it (docs/algorithm.md, section 4c) */
-    if (p->rays > VF_MAX_RAYS || (p->lookup == VF_LOOKUP_BILINEAR && !VF_BILINEAR) ||
-        (p->partial_slabs && (!VF_PARTIAL_SLABS || p->correction == VF_CORRECTION_LUT)))
+    if (p->rays > VF_MAX_RAYS || (p->partial_slabs && (!VF_PARTIAL_SLABS || p->correction == VF_CORRECTION_LUT)))
         return VF_ERR_UNSUPPORTED;
     return VF_OK;
 }

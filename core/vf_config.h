@@ -47,12 +47,6 @@
 #define VF_TABLE_ORACLE 1
 #endif
 
-/* Bilinear table lookup (vf_params_t.lookup, about 450 bytes of Cortex-M4 code): 0 leaves it out, and a renderer
- * asked for it gets VF_ERR_UNSUPPORTED. */
-#ifndef VF_BILINEAR
-#define VF_BILINEAR 1
-#endif
-
 /* Most control points in a transfer function. */
 #ifndef VF_MAX_TF_POINTS
 #define VF_MAX_TF_POINTS 1024

@@ -107,8 +107,7 @@ typedef enum vf_mode {
 
 typedef enum vf_lookup {
     VF_LOOKUP_NEAREST,  /* the nearest table entry of each sample */
-    VF_LOOKUP_BILINEAR, /* interpolate between entries (1D for point, 2D for preint1); VF_ERR_UNSUPPORTED in
-                         * builds without it (VF_BILINEAR, vf_config.h) */
+    VF_LOOKUP_BILINEAR, /* interpolate between entries (1D for point, 2D for preint1) */
     VF_LOOKUP_COUNT
 } vf_lookup_t;
 

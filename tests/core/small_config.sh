@@ -1,11 +1,10 @@
 #!/bin/sh
 # The smallest configuration of core/vf_config.h, the microcontroller's (-DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1
-# -DVF_MAX_TABLE_PARTS=1 -DVF_VIEW_TABLE=0 -DVF_TABLE_ON_DEMAND=0 -DVF_BILINEAR=0 -DVF_TABLE_ORACLE=0):
-# tests/core/small_config.c built against it and against the whole core. The small core must refuse more than one
-# ray, partial slabs, bilinear lookup and the brute-force table builder with VF_ERR_UNSUPPORTED (which the whole
-# core renders or builds), and render every other frame of the program
-# exactly as the whole core does (90 frames: every mode and correction with nearest lookup, 3 views; and one
-# renderer a mode, correction and table format through 6 views and a
+# -DVF_MAX_TABLE_PARTS=1 -DVF_VIEW_TABLE=0 -DVF_TABLE_ON_DEMAND=0 -DVF_TABLE_ORACLE=0): tests/core/small_config.c
+# built against it and against the whole core. The small core must refuse more than one ray, partial slabs and the
+# brute-force table builder with VF_ERR_UNSUPPORTED (which the whole core renders or builds), and render every
+# other frame of the program exactly as the whole core does (108 frames: every mode, lookup and correction, 3
+# views; and one renderer a mode, correction and table format through 6 views and a
 # new transfer function. The whole core builds its tables in 3 parts, the small one in vf_render_begin; with the
 # lut the whole core corrects a view table, the small one each segment).
 cd "$(dirname "$0")/../.." || exit 2
@@ -18,13 +17,13 @@ build() { # name, extra flags
     $cc $flags $2 -o "$out/$1" tests/core/small_config.c core/*.c >"$out/$1.log" 2>&1 &&
         "$out/$1" >"$out/$1.txt" 2>>"$out/$1.log"
 }
-if ! build whole "" || ! build small "-DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1 -DVF_MAX_TABLE_PARTS=1 -DVF_VIEW_TABLE=0 -DVF_TABLE_ON_DEMAND=0 -DVF_BILINEAR=0 -DVF_TABLE_ORACLE=0"; then
+if ! build whole "" || ! build small "-DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1 -DVF_MAX_TABLE_PARTS=1 -DVF_VIEW_TABLE=0 -DVF_TABLE_ON_DEMAND=0 -DVF_TABLE_ORACLE=0"; then
     echo "not ok - small-config/builds and runs: $(head -n 3 "$out"/*.log | tr '\n' ' ')"
     exit 0
 fi
 
 line() { sed -n "s/^$2: //p" "$out/$1.txt"; }
-for option in "rays 2" "partial slabs" bilinear "brute-force table"; do
+for option in "rays 2" "partial slabs" "brute-force table"; do
     whole=$(line whole "$option") small=$(line small "$option")
     if [ "$whole" = VF_OK ] && [ "$small" = VF_ERR_UNSUPPORTED ]; then
         echo "ok - small-config/$option: the whole core renders it, the small core says $small"

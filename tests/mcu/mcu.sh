@@ -28,10 +28,10 @@ fi
 # The shared bucky volume when it is there; a fresh checkout without ../shared/data gets a phantom of its size.
 if [ -f "$data/bucky.nhdr" ]; then volume=$data/bucky.nhdr; else volume=phantom:shepp-logan:32; fi
 default="$volume --size 64x64 --format rgb565 --mode preint1 --preset ramp --view 30,20"
-# every option the firmware's core has away from its default (bilinear lookup it leaves out: 4. below), a roll, a
-# zoom and another principal axis; 5-row bands do not divide the intermediate image, so the last band is a short one
+# every option away from its default, a roll, a zoom and another principal axis; 5-row bands do not divide the
+# intermediate image, so the last band is a short one
 changed="$volume --size 48x40 --format xrgb8888 --mode preint1 --preset sharp --view 200,-40,15 --zoom 1.3"
-changed="$changed --table-size 64 --table-bits 8 --correction lut --buffer image"
+changed="$changed --table-size 64 --table-bits 8 --lookup bilinear --correction lut --buffer image"
 
 # firmware NAME SCENE BAND_ROWS [GEN_OPTS]: build it and run it; $tmp/NAME.out gets its output, $tmp/NAME.status
 # its exit status (124: the timeout ended it)
@@ -123,12 +123,12 @@ if firmware short "$changed" 5 "--arena-bytes $short"; then
     fi
 fi
 
-# 4. an option the firmware's core leaves out (MCU_FEATURES: -DVF_BILINEAR=0) is refused, with exit status 2
-if firmware bilinear "$default --lookup bilinear" 8; then
-    status=$(cat "$tmp/bilinear.status")
-    if [ "$status" = 2 ] && grep -q '^vf_renderer_create: not supported by this build$' "$tmp/bilinear.out"; then
-        ok "bilinear lookup, which the firmware's core leaves out, ends in VF_ERR_UNSUPPORTED and exit status 2"
+# 4. an option the firmware's core leaves out (MCU_FEATURES: -DVF_MAX_RAYS=1) is refused, with exit status 2
+if firmware rays "$default --rays 2" 8; then
+    status=$(cat "$tmp/rays.status")
+    if [ "$status" = 2 ] && grep -q '^vf_renderer_create: not supported by this build$' "$tmp/rays.out"; then
+        ok "two rays a voxel column, which the firmware's core leaves out, end in VF_ERR_UNSUPPORTED and exit status 2"
     else
-        fail "bilinear refused" "status $status: $(tr '\n' ' ' <"$tmp/bilinear.out")"
+        fail "rays refused" "status $status: $(tr '\n' ' ' <"$tmp/rays.out")"
     fi
 fi
