@@ -71,54 +71,61 @@ static int same(const vfi_span_t *a, uint32_t na, const vfi_span_t *b, uint32_t 
     return na == nb && memcmp(a, b, sizeof *a * na) == 0;
 }
 
-/* Both slices on one cell row, their column offsets a pixel or none apart, either way round, clipped anywhere (the
- * common case: a small vertical shear): the merge of the row with itself is the union. */
-static void one_row_is_the_union(void)
+/* Slices whose first pixels are 1..60 and a pixel or none apart, either way round, and a clip anywhere */
+static void random_placement(slice_place_t *front, slice_place_t *back, int32_t *lo, int32_t *hi)
 {
-    uint16_t pairs[MAX_PAIRS];
+    memset(front, 0, sizeof *front);
+    memset(back, 0, sizeof *back);
+    front->cu = 1 + (int32_t)check_below(&rng, 60);
+    back->cu = front->cu + (int32_t)check_below(&rng, 3) - 1;
+    *lo = (int32_t)check_below(&rng, 80);
+    *hi = *lo + (int32_t)check_below(&rng, PIXELS - 80);
+}
+
+/* The merge of a front and a back row's runs equals brute force; the number of runs it gave in *got_count, brute
+ * force's in *want_count. */
+static int merge_is_union(const uint16_t *pairs_f, uint32_t nf, const uint16_t *pairs_b, uint32_t nb,
+                          const slice_place_t *front, const slice_place_t *back, int32_t lo, int32_t hi,
+                          uint32_t *got_count, uint32_t *want_count)
+{
     vfi_span_t want[PIXELS], got[PIXELS];
+    uint8_t covered[PIXELS] = {0};
+    cover(pairs_f, nf, front->cu, covered);
+    cover(pairs_b, nb, back->cu, covered);
+    *want_count = intervals(covered, lo, hi, want);
+    run_merge_t m;
+    vfi_merge_init(&m, 16, pairs_f, pairs_f + nf, front, pairs_b, pairs_b + nb, back);
+    *got_count = vfi_merge_runs(&m, lo, hi, got);
+    return same(got, *got_count, want, *want_count);
+}
+
+/* 20,000 random rows: the front slice's and the back slice's, or (same_row) one row for both */
+static void random_unions(int same_row)
+{
+    uint16_t pairs_f[MAX_PAIRS], pairs_b[MAX_PAIRS];
     for (int trial = 0; trial < 20000; trial++) {
-        const uint32_t n = random_runs(pairs);
+        const uint32_t nf = random_runs(pairs_f), nb = same_row ? nf : random_runs(pairs_b);
         slice_place_t front, back;
-        memset(&front, 0, sizeof front);
-        memset(&back, 0, sizeof back);
-        front.cu = 1 + (int32_t)check_below(&rng, 60);
-        back.cu = front.cu + (int32_t)check_below(&rng, 3) - 1;
-        const int32_t lo = (int32_t)check_below(&rng, 80), hi = lo + (int32_t)check_below(&rng, PIXELS - 80);
-        uint8_t covered[PIXELS] = {0};
-        cover(pairs, n, front.cu, covered);
-        cover(pairs, n, back.cu, covered);
-        const uint32_t nw = intervals(covered, lo, hi, want);
-        run_merge_t m;
-        vfi_merge_init(&m, 16, pairs, pairs + n, &front, pairs, pairs + n, &back);
-        const uint32_t ng = vfi_merge_runs(&m, lo, hi, got);
-        CHECK_MSG(same(got, ng, want, nw), "trial %d: %u runs, brute force %u (cu %d and %d, clip %d..%d)", trial, ng,
-                  nw, front.cu, back.cu, lo, hi);
+        int32_t lo, hi;
+        uint32_t got, want;
+        random_placement(&front, &back, &lo, &hi);
+        CHECK_MSG(merge_is_union(pairs_f, nf, same_row ? pairs_f : pairs_b, nb, &front, &back, lo, hi, &got, &want),
+                  "trial %d: %u runs, brute force %u (cu %d and %d, clip %d..%d)", trial, got, want, front.cu,
+                  back.cu, lo, hi);
     }
 }
 
-/* Two different cell rows (the general case), offsets up to a pixel apart: the two-stream merge is the union. */
+/* Both slices on one cell row (the common case: a small vertical shear): the merge of the row with itself at the
+ * two columns is the union. */
+static void one_row_is_the_union(void)
+{
+    random_unions(1);
+}
+
+/* Two different cell rows (the general case): the merge is the union. */
 static void two_rows_are_the_union(void)
 {
-    uint16_t pairs_f[MAX_PAIRS], pairs_b[MAX_PAIRS];
-    vfi_span_t want[PIXELS], got[PIXELS];
-    for (int trial = 0; trial < 20000; trial++) {
-        const uint32_t nf = random_runs(pairs_f), nb = random_runs(pairs_b);
-        slice_place_t front, back;
-        memset(&front, 0, sizeof front);
-        memset(&back, 0, sizeof back);
-        front.cu = 1 + (int32_t)check_below(&rng, 60);
-        back.cu = front.cu + (int32_t)check_below(&rng, 3) - 1;
-        const int32_t lo = (int32_t)check_below(&rng, 80), hi = lo + (int32_t)check_below(&rng, PIXELS - 80);
-        uint8_t covered[PIXELS] = {0};
-        cover(pairs_f, nf, front.cu, covered);
-        cover(pairs_b, nb, back.cu, covered);
-        const uint32_t nw = intervals(covered, lo, hi, want);
-        run_merge_t m;
-        vfi_merge_init(&m, 16, pairs_f, pairs_f + nf, &front, pairs_b, pairs_b + nb, &back);
-        const uint32_t n = vfi_merge_runs(&m, lo, hi, got);
-        CHECK_MSG(same(got, n, want, nw), "trial %d: %u runs, brute force %u", trial, n, nw);
-    }
+    random_unions(0);
 }
 
 /* The joins by hand: a row's runs a cell apart, at columns a pixel apart, join; at the same columns they do not; an
