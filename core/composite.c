@@ -137,15 +137,14 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
                 const bool whole_row = v >= whole.v_lo && v <= whole.v_hi && whole.u_lo <= whole.u_hi;
                 if (whole_row) {
                     const uint16_t *end, *p = vfi_runs_row(runs, kc, j, &end);
-                    if (p == end)
-                        goto faces;
-                    run_merge_t m;
-                    vfi_merge_init(&m, job.step_shift, p, end, sl, NULL, NULL, NULL);
-                    job.clip_lo = whole.u_lo;
-                    job.clip_hi = whole.u_hi;
-                    vfi_row_order0(&job, &m, preclass);
+                    if (p != end) { /* a row with no visible cell costs nothing more */
+                        run_merge_t m;
+                        vfi_merge_init(&m, job.step_shift, p, end, sl, NULL, NULL, NULL);
+                        job.clip_lo = whole.u_lo;
+                        job.clip_hi = whole.u_hi;
+                        vfi_row_order0(&job, &m, preclass);
+                    }
                 }
-            faces:
                 if (partial)
                     faces_around(&job, v, sl->u_lo, sl->u_hi, whole_row ? whole.u_lo : sl->u_hi + 1, whole.u_hi,
                                  preclass);

@@ -79,12 +79,9 @@ typedef struct row_job {
     uint16_t *next;                    /* skip links: next[u] == u for an open pixel, else a pixel further right */
     uint16_t *pixels;                  /* the intermediate row, r, g, b, a in Q1.15 */
     /* preint1: the buffered table positions (nearest: entry times N, the front entry's row in the 2D table;
-     * bilinear: Q.16), buffer index = u - shift (a slice buffer's row has one element before index 0); and the
-     * runs the last slab and this one walk in this row */
+     * bilinear: Q.16), buffer index = u - shift (a slice buffer's row has one element before index 0) */
     uint32_t *front_buf, *back_buf;
     int32_t front_shift, back_shift;
-    const row_visits_t *last;          /* NULL when the last slab did not walk this row */
-    row_visits_t *visits;
     const vfi_demand_t *demand;        /* the 2D table is built as it is read (tables.h), or NULL */
 } row_job_t;
 

@@ -210,7 +210,7 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
         const row_visits_t *last = last_visits(s, k, t);
         row_visits_t *now = &s->now[k];
         now->slab = t;
-        run_merge_t m;
+        run_merge_t m; /* plain: one ray, step_shift 16, said as a constant so that the streams' test of it goes */
         vfi_merge_init(&m, plain ? 16 : job->step_shift, pairs + runs_f[0], pairs + runs_f[1], front,
                        pairs + runs_b[0], pairs + runs_b[1], back);
         now->count = vfi_merge_runs(&m, lo, hi, now->span);

@@ -138,7 +138,6 @@ void vfi_preint_table_part(const vfi_classify_t *cls, uint32_t slab_q16, const v
         build_diagonal(cls, slab_q16, scratch, visible_count, out, r);
 }
 
-
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Runs of intervals (the header comment gives the arithmetic and its bound). */
 

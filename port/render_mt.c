@@ -45,9 +45,10 @@ int vfp_render_open(vfp_render_t *r, const vf_params_t *params, const vf_volume_
     r->params = *params;
     r->volume = volume;
     r->threads = threads < 1 ? 1 : threads > VFP_MAX_THREADS ? VFP_MAX_THREADS : threads;
-    /* Taller bands pay a slab's or slice's set-up fewer times a frame (one thread, engine at 512x512: 32 rows take
-     * 1.1% fewer instructions than 8 for point and 1.8% for preint1; make bench); shorter ones share the work
-     * out more evenly: about ten bands a thread for a 300-row intermediate image, never fewer than 8 rows. */
+    /* Taller bands pay a slab's or slice's set-up fewer times a frame (one thread, engine at 512x512, ramp: 32 rows
+     * take 1.1% fewer instructions than 8 for point and 1.8% for preint1, callgrind over 2 frames of volfix-sim
+     * bench); shorter ones share the work out more evenly: about ten bands a thread for a 300-row intermediate
+     * image, never fewer than 8 rows. */
     r->band_rows = 32 / (uint32_t)r->threads < 8 ? 8 : 32 / (uint32_t)r->threads;
     size_t fixed;
     vf_status_t s = vf_renderer_bytes(params, volume, &fixed);
