@@ -313,7 +313,7 @@ MCU_OPT       := -Os -g -ffunction-sections -fdata-sections -fno-tree-loop-distr
 # then corrects each segment) and the brute-force table builder (the tests' oracle), which keeps the core within
 # issue 6's 24 KB of code.
 MCU_FEATURES  ?= -DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1 -DVF_MAX_TABLE_PARTS=1 -DVF_VIEW_TABLE=0 -DVF_TABLE_ON_DEMAND=0 \
-                 -DVF_TABLE_ORACLE=0
+                 -DVF_TABLE_ORACLE=0 -DVF_SPECIAL_LOOPS=0
 MCU_CORE_CFLAGS := -std=c99 -ffreestanding -fno-builtin -Wall -Wextra -Wpedantic -Werror -Wshadow \
                    -Wstrict-prototypes -Wmissing-prototypes -Wconversion -Wno-sign-conversion $(MCU_ARCH) $(MCU_OPT) \
                    $(MCU_FEATURES)
@@ -374,6 +374,10 @@ $(MCU_ELF): $(MCU_FW_OBJ) $(MCU_BUILD)/libvolfix.a $(MCU_DIR)/mps2-an386.ld
 	$(MCU_CROSS)gcc $(MCU_ARCH) -nostdlib -T $(MCU_DIR)/mps2-an386.ld -Wl,--gc-sections \
 	    -Wl,-Map=$(MCU_BUILD)/fw.map -o $@ $(MCU_FW_OBJ) $(MCU_BUILD)/libvolfix.a -lgcc
 # ---- end of make mcu ----------------------------------------------------------------------------------------
+
+# make print-VAR prints a variable's value for scripts: tests/core/small_config.sh builds the core with MCU_FEATURES.
+print-%:
+	@echo '$($*)'
 
 # ---- make test-asan and make test-long -------------------------------------------------------------------------
 # test-asan: everything built with AddressSanitizer and UndefinedBehaviorSanitizer (SAN=1: -fsanitize=address,

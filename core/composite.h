@@ -78,8 +78,9 @@ typedef struct row_job {
     uint32_t inter_shift;              /* precision studies: accumulators rounded to multiples of 2^shift in Q1.15 */
     uint16_t *next;                    /* skip links: next[u] == u for an open pixel, else a pixel further right */
     uint16_t *pixels;                  /* the intermediate row, r, g, b, a in Q1.15 */
-    /* preint1: the buffered table positions (nearest: entry times N, the front entry's row in the 2D table;
-     * bilinear: Q.16), buffer index = u - shift (a slice buffer's row has one element before index 0) */
+    /* preint1: the buffered table positions (nearest: entry times N, the front entry's row in the 2D table, and
+     * in the plain path that times 8, the row's byte offset; bilinear: Q.16), buffer index = u - shift (a slice
+     * buffer's row has one element before index 0). A frame reads them in the path that wrote them. */
     uint32_t *front_buf, *back_buf;
     int32_t front_shift, back_shift;
     const vfi_demand_t *demand;        /* the 2D table is built as it is read (tables.h), or NULL */
@@ -127,6 +128,15 @@ static inline uint64_t vfi_sample_rows(const uint8_t *p, const uint8_t *q, uint3
     int32_t top = (int32_t)(p[0] << 16) + ((int32_t)p[1] - (int32_t)p[0]) * (int32_t)fx; /* Q8.16 */
     int32_t bottom = (int32_t)(q[0] << 16) + ((int32_t)q[1] - (int32_t)q[0]) * (int32_t)fx;
     return (uint64_t)((int64_t)top * 65536 + (int64_t)(bottom - top) * (int64_t)fy);
+}
+
+/* round(s) of that sample s, the nearest entry of a 256-entry table (vfi_entry_of_sample_n), with the half added to
+ * both rows' lerps: (s + 2^31) >> 32 to the bit, without a 64-bit constant that a loop would keep in a register. */
+static inline uint32_t vfi_entry256_rows(const uint8_t *p, const uint8_t *q, uint32_t fx, uint32_t fy)
+{
+    int32_t top = (int32_t)(p[0] << 16) + 32768 + ((int32_t)p[1] - (int32_t)p[0]) * (int32_t)fx;
+    int32_t bottom = (int32_t)(q[0] << 16) + 32768 + ((int32_t)q[1] - (int32_t)q[0]) * (int32_t)fx;
+    return (uint32_t)((uint64_t)((int64_t)top * 65536 + (int64_t)(bottom - top) * (int64_t)fy) >> 32);
 }
 
 static inline uint64_t vfi_sample_at(const uint8_t *p, uint32_t row, uint32_t fx, uint32_t fy)
@@ -323,6 +333,32 @@ static VF_ALWAYS_INLINE uint32_t vfi_merge_runs(run_merge_t *m, int32_t lo, int3
         if (a < b) {
             walked[count].a = (uint32_t)a;
             walked[count].b = (uint32_t)b;
+            count++;
+        }
+    }
+    return count;
+}
+
+/* vfi_merge_runs for a slab whose two slices read the same cell row (one ray per voxel), the common case for a small
+ * vertical shear: the row's runs of cells [a, b) hold the front samples of pixels [a + front cu, b + front cu) and
+ * the back samples of [a + back cu, b + back cu), which are at most a pixel apart; so their union is each run
+ * widened to [a + cu_lo, b + cu_hi), and a run joins the one before when its gap of invisible cells is no wider
+ * than that (cu_hi - cu_lo). One stream where the general merge follows two. */
+static VF_ALWAYS_INLINE uint32_t vfi_merge_one_row(const uint16_t *p, const uint16_t *end, int32_t cu_lo,
+                                                   int32_t cu_hi, int32_t lo, int32_t hi, vfi_span_t *walked)
+{
+    uint32_t count = 0;
+    int32_t pos = 0; /* the cell after the last run read */
+    while (p < end) {
+        const int32_t a = pos + p[0];
+        int32_t b = a + p[1];
+        for (p += 2; p < end && b + p[0] + cu_lo <= b + cu_hi; p += 2) /* gap <= cu_hi - cu_lo */
+            b += p[0] + p[1];
+        pos = b;
+        const int32_t x = a + cu_lo > lo ? a + cu_lo : lo, y = b + cu_hi < hi + 1 ? b + cu_hi : hi + 1;
+        if (x < y) {
+            walked[count].a = (uint32_t)x;
+            walked[count].b = (uint32_t)y;
             count++;
         }
     }

@@ -6,13 +6,15 @@
 #include "composite.h"
 
 
-/* point with the default table and one ray per voxel column: the loop on its own, everything it reads in locals */
-static void row_point_plain(const row_job_t *job, run_merge_t *m)
+/* point with a 16-bit table and one ray per voxel column: the loop on its own, everything it reads in locals. n256 (the
+ * default size): a sample's entry is vfi_entry256_rows. (When the loop read the table's size each pixel, which the
+ * stores to the pixels might change as far as the compiler knew, and was inlined into vfi_row_order0, it ran 3.2 M
+ * instructions more a frame for engine: callgrind, make bench's count.) */
+static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *m, bool n256)
 {
     const slice_place_t *sl = job->front;
-    const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fy = job->front_fy;
+    const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fy = job->front_fy, n = job->lookup.n;
     const uint16_t *table = job->lookup.q15;
-    const vfi_classify_t *cls = job->cls;
     const uint8_t *data = job->row_data;
     uint16_t *next = job->next, *pixels = job->pixels;
     int32_t a, b;
@@ -21,13 +23,27 @@ static void row_point_plain(const row_job_t *job, run_merge_t *m)
         b = b < job->clip_hi + 1 ? b : job->clip_hi + 1;
         for (uint32_t u = a < b ? vfi_next_open(next, (uint32_t)a) : (uint32_t)b; u < (uint32_t)b;
              u = vfi_next_open(next, u + 1)) {
-            uint64_t s = vfi_sample_at(data + (u - cu), row, fx, fy);
-            const uint16_t *e = table + (size_t)vfi_entry_of_sample(cls, s) * 4;
+            const uint8_t *p = data + (u - cu);
+            const uint32_t i = n256 ? vfi_entry256_rows(p, p + row, fx, fy)
+                                    : vfi_entry_of_sample_n(n, vfi_sample_at(p, row, fx, fy));
+            const uint16_t *e = table + (size_t)i * 4;
             if (e[3] && vfi_blend_q15(pixels + (size_t)u * 4, e))
                 next[u] = (uint16_t)(u + 1);
         }
     }
 }
+
+static VF_NOINLINE void row_point_256(const row_job_t *job, run_merge_t *m)
+{
+    row_point_plain(job, m, true);
+}
+
+#if VF_SPECIAL_LOOPS
+static VF_NOINLINE void row_point_n(const row_job_t *job, run_merge_t *m)
+{
+    row_point_plain(job, m, false);
+}
+#endif
 
 /* Any mode, lookup, table format, correction, precision study or number of rays. With one ray per voxel a pixel's
  * column is u - cu at the slice's one fraction; with more each pixel has its own. */
@@ -50,13 +66,25 @@ static VF_ALWAYS_INLINE void row_general(const row_job_t *job, run_merge_t *m, b
     }
 }
 
-void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
+/* The general loops out of vfi_row_order0, so that a row of the plain path does not pay for their registers: the
+ * dispatch saved six registers a row for them (24 instructions). */
+static VF_NOINLINE void row_general_any(const row_job_t *job, run_merge_t *m, bool preclass)
 {
     const bool one_ray = VF_MAX_RAYS == 1 || job->step == 65536; /* constant in one-ray builds */
-    if (job->plain && !preclass)
-        row_point_plain(job, m);
-    else if (one_ray)
+    if (one_ray)
         preclass ? row_general(job, m, true, true) : row_general(job, m, false, true);
     else
         preclass ? row_general(job, m, true, false) : row_general(job, m, false, false);
+}
+
+void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
+{
+    if (job->plain && !preclass && job->lookup.n == 256)
+        row_point_256(job, m);
+#if VF_SPECIAL_LOOPS
+    else if (job->plain && !preclass)
+        row_point_n(job, m);
+#endif
+    else
+        row_general_any(job, m, preclass);
 }

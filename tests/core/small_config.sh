@@ -1,7 +1,6 @@
 #!/bin/sh
-# The smallest configuration of core/vf_config.h, the microcontroller's (-DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1
-# -DVF_MAX_TABLE_PARTS=1 -DVF_VIEW_TABLE=0 -DVF_TABLE_ON_DEMAND=0 -DVF_TABLE_ORACLE=0): tests/core/small_config.c
-# built against it and against the whole core. The small core must refuse more than one ray, partial slabs and the
+# The smallest configuration of core/vf_config.h, the microcontroller's (the Makefile's MCU_FEATURES, read from it):
+# tests/core/small_config.c built against it and against the whole core. The small core must refuse more than one ray, partial slabs and the
 # brute-force table builder with VF_ERR_UNSUPPORTED (which the whole core renders or builds), and render every
 # other frame of the program exactly as the whole core does (108 frames: every mode, lookup and correction, 3
 # views; and one renderer a mode, correction and table format through 6 views and a
@@ -13,11 +12,17 @@ rm -rf "$out" && mkdir -p "$out"
 cc=${CC:-gcc}
 flags="-std=c99 -O2 -Wall -Wextra -Werror -Icore $SMALL_CONFIG_CFLAGS"
 
+small=$(${MAKE:-make} -s --no-print-directory print-MCU_FEATURES)
+case "$small" in
+*-DVF_MAX_RAYS=1*) ;;
+*) echo "not ok - small-config/features: expected the Makefile's MCU_FEATURES, got '$small'"; exit 0 ;;
+esac
+
 build() { # name, extra flags
     $cc $flags $2 -o "$out/$1" tests/core/small_config.c core/*.c >"$out/$1.log" 2>&1 &&
         "$out/$1" >"$out/$1.txt" 2>>"$out/$1.log"
 }
-if ! build whole "" || ! build small "-DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1 -DVF_MAX_TABLE_PARTS=1 -DVF_VIEW_TABLE=0 -DVF_TABLE_ON_DEMAND=0 -DVF_TABLE_ORACLE=0"; then
+if ! build whole "" || ! build small "$small"; then
     echo "not ok - small-config/builds and runs: $(head -n 3 "$out"/*.log | tr '\n' ' ')"
     exit 0
 fi
