@@ -339,30 +339,4 @@ static VF_ALWAYS_INLINE uint32_t vfi_merge_runs(run_merge_t *m, int32_t lo, int3
     return count;
 }
 
-/* vfi_merge_runs for a slab whose two slices read the same cell row (one ray per voxel), the common case for a small
- * vertical shear: the row's runs of cells [a, b) hold the front samples of pixels [a + front cu, b + front cu) and
- * the back samples of [a + back cu, b + back cu), which are at most a pixel apart; so their union is each run
- * widened to [a + cu_lo, b + cu_hi), and a run joins the one before when its gap of invisible cells is no wider
- * than that (cu_hi - cu_lo). One stream where the general merge follows two. */
-static VF_ALWAYS_INLINE uint32_t vfi_merge_one_row(const uint16_t *p, const uint16_t *end, int32_t cu_lo,
-                                                   int32_t cu_hi, int32_t lo, int32_t hi, vfi_span_t *walked)
-{
-    uint32_t count = 0;
-    int32_t pos = 0; /* the cell after the last run read */
-    while (p < end) {
-        const int32_t a = pos + p[0];
-        int32_t b = a + p[1];
-        for (p += 2; p < end && b + p[0] + cu_lo <= b + cu_hi; p += 2) /* gap <= cu_hi - cu_lo */
-            b += p[0] + p[1];
-        pos = b;
-        const int32_t x = a + cu_lo > lo ? a + cu_lo : lo, y = b + cu_hi < hi + 1 ? b + cu_hi : hi + 1;
-        if (x < y) {
-            walked[count].a = (uint32_t)x;
-            walked[count].b = (uint32_t)y;
-            count++;
-        }
-    }
-    return count;
-}
-
 #endif

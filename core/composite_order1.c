@@ -38,14 +38,12 @@ typedef struct plain_row {
  * the open pixels from u, which is open, to y, their front entries from the buffer (buffered) or sampled here. The
  * loop keeps all it reads in locals, so that the stores to the buffer and the pixels cannot make the compiler read
  * it again; as first written it kept eleven values on the stack and read them every segment.
- * The buffer holds a position as the byte offset of its row in the table (entry times N times 8), which the entry's
- * address adds to the back position's column in one step; n256: the entries round samples as vfi_entry256_rows.
  * Returns the first open pixel at or after y, or, in a table built as read, the pixel whose entry was unbuilt, its
- * back sample stored, with that entry's index in *entry, worked out from its address so that the loop keeps neither
- * position for it (2 instructions a segment): the caller builds that diagonal and composites the pixel
- * (plain_unbuilt). The call in the loop would make it keep more on the stack: 3 instructions more a segment. */
+ * back sample stored, with the entry's front and back in *f, *b: the caller builds that diagonal and composites
+ * the pixel (plain_unbuilt). The call in the loop would make it keep more on the stack: 3 instructions more a
+ * segment. */
 static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256,
-                                            size_t *entry)
+                                            uint32_t *f, uint32_t *b)
 {
     const uint32_t n = n256 ? 256 : pr->n, cu = pr->cu, fx = pr->back_fx, fy = pr->back_fy;
     const uint8_t *top = pr->top, *bottom = pr->bottom;
@@ -53,27 +51,23 @@ static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, u
     uint32_t *back_buf = pr->back_buf;
     const uint16_t *table = pr->table;
     uint16_t *next = pr->next, *pixels = pr->pixels;
-    const uint32_t row_bytes = n * 8; /* a row of the table, in bytes: what the buffer holds per entry */
-    const uint8_t *table_bytes = (const uint8_t *)table;
     for (; u < y; u = vfi_next_open(next, u + 1)) {
         const uint32_t c = u - cu;
-        uint32_t row_f; /* the front entry's row, in bytes from the table's start */
+        uint32_t row_f; /* front entry times N */
         if (buffered) {
             row_f = front_buf[c];
         } else {
-            const uint8_t *p = pr->front + (u - pr->front_cu);
-            row_f = row_bytes * (n256 ? vfi_entry256_rows(p, p + pr->row, pr->front_fx, pr->front_fy)
-                                      : vfi_entry_of_sample_n(n, vfi_sample_at(p, pr->row, pr->front_fx, pr->front_fy)));
+            uint64_t s = vfi_sample_at(pr->front + (u - pr->front_cu), pr->row, pr->front_fx, pr->front_fy);
+            row_f = n * vfi_entry_of_sample_n(n, s);
         }
-        const uint32_t pos_b = n256 ? vfi_entry256_rows(top + c, bottom + c, fx, fy)
-                                    : vfi_entry_of_sample_n(n, vfi_sample_rows(top + c, bottom + c, fx, fy));
-        back_buf[c] = pos_b * row_bytes;
-        const uint16_t *e = (const uint16_t *)(table_bytes + row_f) + (size_t)pos_b * 4;
+        const uint32_t pos_b = vfi_entry_of_sample_n(n, vfi_sample_rows(top + c, bottom + c, fx, fy));
+        back_buf[c] = pos_b * n;
+        const uint16_t *e = table + ((size_t)row_f + pos_b) * 4;
         if (e[3]) {
             if (vfi_blend_q15(pixels + (size_t)c * 4, e))
                 next[u] = (uint16_t)(u + 1);
         } else if (VF_TABLE_ON_DEMAND && e[0] == VFI_UNBUILT_Q15) { /* only ever in a table built as read */
-            *entry = (size_t)(e - table) / 4; /* from e, so that neither position need be kept for this */
+            *f = row_f / n, *b = pos_b;
             return u;
         }
     }
@@ -82,10 +76,10 @@ static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, u
 
 /* Pixel u's segment, entry (f, b), which span_plain found unbuilt: the diagonal built, then what the loop would do
  * with it. Returns the next open pixel. */
-static uint32_t plain_unbuilt(const plain_row_t *pr, uint32_t u, size_t entry)
+static uint32_t plain_unbuilt(const plain_row_t *pr, uint32_t u, uint32_t f, uint32_t b)
 {
-    vfi_preint_demand_diagonal(pr->demand, (uint32_t)(entry / pr->n), (uint32_t)(entry % pr->n));
-    const uint16_t *e = pr->table + entry * 4;
+    vfi_preint_demand_diagonal(pr->demand, f, b);
+    const uint16_t *e = pr->table + ((size_t)f * pr->n + b) * 4;
     if (e[3] && vfi_blend_q15(pr->pixels + (size_t)(u - pr->cu) * 4, e))
         pr->next[u] = (uint16_t)(u + 1);
     return vfi_next_open(pr->next, u + 1);
@@ -148,10 +142,10 @@ static VF_ALWAYS_INLINE void row(const row_job_t *job, const plain_row_t *pr, co
                 u = span_general(job, u, y, buffered);
                 continue;
             }
-            size_t entry; /* the entry span_plain found unbuilt */
-            u = buffered ? span_plain(pr, u, y, true, n256, &entry) : span_plain(pr, u, y, false, n256, &entry);
+            uint32_t ef, eb; /* the entry span_plain found unbuilt */
+            u = buffered ? span_plain(pr, u, y, true, n256, &ef, &eb) : span_plain(pr, u, y, false, n256, &ef, &eb);
             if (VF_TABLE_ON_DEMAND && u < y)
-                u = plain_unbuilt(pr, u, entry);
+                u = plain_unbuilt(pr, u, ef, eb);
         }
     }
 }
@@ -188,13 +182,9 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
         pr.demand = job->demand;
     }
     const uint32_t *runs_f0 = runs + j_f, *runs_b0 = runs + j_b; /* row v_lo's */
-    const bool one_row = VF_SPECIAL_LOOPS && j_f == j_b; /* for every row of the slab, in the plain path */
-    const int32_t cu_lo = MIN(front->cu, back->cu), cu_hi = MAX(front->cu, back->cu);
     /* the plain loops address the buffers by the back slice's column (a slice buffer's front one is -1, 0 or 1 off) */
     uint32_t *front_buf = s->front_buf + (plain ? back->cu - job->front_shift : 0);
     uint32_t *back_buf = s->back_buf + (plain ? back->cu - job->back_shift : 0);
-    const size_t buf_stride = s->buf_stride, next_stride = s->next_stride, pixel_stride = s->pixel_stride;
-    uint16_t *const next0 = s->next, *const pixels0 = s->pixels + (plain ? (size_t)back->cu * 4 : 0);
     for (uint32_t k = 0; k < rows; k++) {
         if (!plain) {
             job->row_data = vfi_slice_row(front, row_bytes, job->step, s->v_lo + (int32_t)k, &j_f, &job->front_fy);
@@ -204,14 +194,13 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
         if (runs_f[0] == runs_f[1] && runs_b[0] == runs_b[1])
             continue; /* nothing visible: the row is not walked, and the next slab samples its fronts */
         if (plain) {
-            const size_t slice_off = (size_t)k * row_bytes, buf_off = (size_t)k * buf_stride;
-            pr.top = back_data + slice_off;
+            pr.top = back_data + (size_t)k * row_bytes;
             pr.bottom = pr.top + row_bytes;
-            pr.front = front_data + slice_off;
-            pr.front_buf = front_buf + buf_off;
-            pr.back_buf = back_buf + buf_off;
-            pr.next = next0 + (size_t)k * next_stride;
-            pr.pixels = pixels0 + (size_t)k * pixel_stride;
+            pr.front = front_data + (size_t)k * row_bytes;
+            pr.front_buf = front_buf + (size_t)k * s->buf_stride;
+            pr.back_buf = back_buf + (size_t)k * s->buf_stride;
+            pr.next = s->next + (size_t)k * s->next_stride;
+            pr.pixels = s->pixels + (size_t)k * s->pixel_stride + (size_t)pr.cu * 4;
         } else {
             job->front_buf = front_buf + (size_t)k * s->buf_stride;
             job->back_buf = back_buf + (size_t)k * s->buf_stride;
@@ -221,14 +210,10 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
         const row_visits_t *last = last_visits(s, k, t);
         row_visits_t *now = &s->now[k];
         now->slab = t;
-        if (plain && one_row) {
-            now->count = vfi_merge_one_row(pairs + runs_f[0], pairs + runs_f[1], cu_lo, cu_hi, lo, hi, now->span);
-        } else {
-            run_merge_t m; /* plain: one ray, step_shift 16, said as a constant so that the streams' test of it goes */
-            vfi_merge_init(&m, plain ? 16 : job->step_shift, pairs + runs_f[0], pairs + runs_f[1], front,
-                           pairs + runs_b[0], pairs + runs_b[1], back);
-            now->count = vfi_merge_runs(&m, lo, hi, now->span);
-        }
+        run_merge_t m; /* plain: one ray, step_shift 16, said as a constant so that the streams' test of it goes */
+        vfi_merge_init(&m, plain ? 16 : job->step_shift, pairs + runs_f[0], pairs + runs_f[1], front,
+                       pairs + runs_b[0], pairs + runs_b[1], back);
+        now->count = vfi_merge_runs(&m, lo, hi, now->span);
         row(job, &pr, now->span, now->count, last, plain, n256);
     }
 }

@@ -47,11 +47,9 @@
 #define VF_TABLE_ORACLE 1
 #endif
 
-/* Loops specialised for cases that the general ones also render, to the bit: one run stream for a slab whose two
- * slices read the same cell row (composite.h, vfi_merge_one_row), the common case for a small vertical shear, where
- * other slabs merge two (engine, ramp, 512x512: 0.9 M instructions a frame fewer in preint1); point's loop of the
+/* Loops specialised for cases that the general ones also render, to the bit, for speed alone: point's loop of the
  * default path for table sizes other than 256 (a quarter fewer instructions than the general loop's). 0 leaves them
- * out (about 350 bytes of Cortex-M4 code). */
+ * out (about 120 bytes of Cortex-M4 code). */
 #ifndef VF_SPECIAL_LOOPS
 #define VF_SPECIAL_LOOPS 1
 #endif

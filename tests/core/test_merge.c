@@ -1,9 +1,8 @@
 /*
- * test_merge.c: the union of a slab row's runs (core/composite.h), which decides the pixels a slab walks and, in the
- * runs it records, where the next slab finds its fronts buffered: a pixel too many there would read a stale front.
- * vfi_merge_runs (two slices' cell rows, two streams) and vfi_merge_one_row (both slices on one cell row, columns a
- * pixel or none apart) against brute force: the pixels each slice's runs cover set in a bitmap, clipped, read back
- * as maximal intervals (runs that overlap or touch are one interval there, as the merges join them).
+ * test_merge.c: the union of a slab row's runs (core/composite.h: vfi_merge_runs), which decides the pixels a slab
+ * walks and, in the runs it records, where the next slab finds its fronts buffered: a pixel too many there would
+ * read a stale front. Against brute force: the pixels each slice's runs cover set in a bitmap, clipped, read back
+ * as maximal intervals (runs that overlap or touch are one interval there, as the merge joins them).
  */
 #include <stdint.h>
 #include <string.h>
@@ -100,21 +99,6 @@ static int merge_is_union(const uint16_t *pairs_f, uint32_t nf, const uint16_t *
     return same(got, *got_count, want, *want_count);
 }
 
-/* The one-stream union of a row read by both slices equals brute force (as merge_is_union). */
-static int one_row_is_union(const uint16_t *pairs, uint32_t n, const slice_place_t *front, const slice_place_t *back,
-                            int32_t lo, int32_t hi, uint32_t *got_count, uint32_t *want_count)
-{
-    vfi_span_t want[PIXELS], got[PIXELS];
-    uint8_t covered[PIXELS] = {0};
-    cover(pairs, n, front->cu, covered);
-    cover(pairs, n, back->cu, covered);
-    *want_count = intervals(covered, lo, hi, want);
-    const int32_t cu_lo = front->cu < back->cu ? front->cu : back->cu;
-    const int32_t cu_hi = front->cu > back->cu ? front->cu : back->cu;
-    *got_count = vfi_merge_one_row(pairs, pairs + n, cu_lo, cu_hi, lo, hi, got);
-    return same(got, *got_count, want, *want_count);
-}
-
 /* 20,000 random rows: the front slice's and the back slice's, or (same_row) one row for both */
 static void random_unions(int same_row)
 {
@@ -128,15 +112,11 @@ static void random_unions(int same_row)
         CHECK_MSG(merge_is_union(pairs_f, nf, same_row ? pairs_f : pairs_b, nb, &front, &back, lo, hi, &got, &want),
                   "trial %d: %u runs, brute force %u (cu %d and %d, clip %d..%d)", trial, got, want, front.cu,
                   back.cu, lo, hi);
-        if (same_row)
-            CHECK_MSG(one_row_is_union(pairs_f, nf, &front, &back, lo, hi, &got, &want),
-                      "trial %d: one stream gave %u runs, brute force %u (cu %d and %d, clip %d..%d)", trial, got,
-                      want, front.cu, back.cu, lo, hi);
     }
 }
 
 /* Both slices on one cell row (the common case: a small vertical shear): the merge of the row with itself at the
- * two columns, and the one-stream union, are the union. */
+ * two columns is the union. */
 static void one_row_is_the_union(void)
 {
     random_unions(1);
@@ -171,15 +151,6 @@ static void by_hand(void)
     CHECK_EQ(vfi_merge_runs(&m, 20, 100, s), 0u);
     vfi_merge_init(&m, 16, gap1, gap1 + 4, &a, gap1, gap1 + 4, &b);
     CHECK_EQ(vfi_merge_runs(&m, 12, 14, s), 1u);
-    CHECK(s[0].a == 12 && s[0].b == 15);
-    /* the same with one stream: widened by the pixel between the columns, the runs join; without it they do not */
-    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 11, 0, 100, s), 1u);
-    CHECK(s[0].a == 10 && s[0].b == 17);
-    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 10, 0, 100, s), 2u);
-    CHECK(s[0].a == 10 && s[0].b == 12 && s[1].a == 13 && s[1].b == 16);
-    CHECK_EQ(vfi_merge_one_row(gap1, gap1, 10, 11, 0, 100, s), 0u);
-    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 11, 20, 100, s), 0u);
-    CHECK_EQ(vfi_merge_one_row(gap1, gap1 + 4, 10, 11, 12, 14, s), 1u);
     CHECK(s[0].a == 12 && s[0].b == 15);
 }
 
