@@ -68,7 +68,7 @@ if command -v valgrind >/dev/null; then
             fi
             printf '%-24s %-8s %s instructions per frame\n' "$(basename "$v")" "$mode" "$((total / 2))"
             [ "$mode" = point ] && point=$total
-            # the frame-rate ratio the instructions predict, as the matrix's "x point" column measures it
+            # the same ratio by instructions; the frame-rate ratio (the matrix's "x point") differs from it, either way (README)
             [ "$mode" = preint1 ] && [ -n "$point" ] &&
                 awk -v v="$(basename "$v")" -v p="$point" -v q="$total" \
                     'BEGIN { printf "%-24s point / preint1 = %.2f (instructions per frame)\n", v, p / q }'
