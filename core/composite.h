@@ -122,21 +122,26 @@ void vfi_faces_order0(const row_job_t *job, int32_t v, uint32_t x, uint32_t y, b
 
 
 /* The bilinear sample between p (column i of a slice row) and q (the same column of the next row) with fractions
- * fx, fy (Q0.16), exactly, in Q8.32: lerps as a + (b - a) f, three multiplications. vfi_sample_at: q = p + row. */
-static inline uint64_t vfi_sample_rows(const uint8_t *p, const uint8_t *q, uint32_t fx, uint32_t fy)
+ * fx, fy (Q0.16), exactly, in Q8.32, plus bias 2^16 (bias in Q8.16, added to both rows' lerps, reaches the sample
+ * whole): lerps as a + (b - a) f, three multiplications. vfi_sample_at: q = p + row. */
+static inline uint64_t vfi_sample_rows_biased(const uint8_t *p, const uint8_t *q, uint32_t fx, uint32_t fy,
+                                              int32_t bias)
 {
-    int32_t top = (int32_t)(p[0] << 16) + ((int32_t)p[1] - (int32_t)p[0]) * (int32_t)fx; /* Q8.16 */
-    int32_t bottom = (int32_t)(q[0] << 16) + ((int32_t)q[1] - (int32_t)q[0]) * (int32_t)fx;
+    int32_t top = (int32_t)(p[0] << 16) + bias + ((int32_t)p[1] - (int32_t)p[0]) * (int32_t)fx; /* Q8.16 */
+    int32_t bottom = (int32_t)(q[0] << 16) + bias + ((int32_t)q[1] - (int32_t)q[0]) * (int32_t)fx;
     return (uint64_t)((int64_t)top * 65536 + (int64_t)(bottom - top) * (int64_t)fy);
 }
 
-/* round(s) of that sample s, the nearest entry of a 256-entry table (vfi_entry_of_sample_n), with the half added to
- * both rows' lerps: (s + 2^31) >> 32 to the bit, without a 64-bit constant that a loop would keep in a register. */
+static inline uint64_t vfi_sample_rows(const uint8_t *p, const uint8_t *q, uint32_t fx, uint32_t fy)
+{
+    return vfi_sample_rows_biased(p, q, fx, fy, 0);
+}
+
+/* round(s) of that sample s, the nearest entry of a 256-entry table (vfi_entry_of_sample_n): the half (2^31) as the
+ * lerps' bias, (s + 2^31) >> 32 to the bit, without a 64-bit constant that a loop would keep in a register. */
 static inline uint32_t vfi_entry256_rows(const uint8_t *p, const uint8_t *q, uint32_t fx, uint32_t fy)
 {
-    int32_t top = (int32_t)(p[0] << 16) + 32768 + ((int32_t)p[1] - (int32_t)p[0]) * (int32_t)fx;
-    int32_t bottom = (int32_t)(q[0] << 16) + 32768 + ((int32_t)q[1] - (int32_t)q[0]) * (int32_t)fx;
-    return (uint32_t)((uint64_t)((int64_t)top * 65536 + (int64_t)(bottom - top) * (int64_t)fy) >> 32);
+    return (uint32_t)(vfi_sample_rows_biased(p, q, fx, fy, 32768) >> 32);
 }
 
 static inline uint64_t vfi_sample_at(const uint8_t *p, uint32_t row, uint32_t fx, uint32_t fy)
