@@ -16,10 +16,17 @@ static VF_ALWAYS_INLINE const uint16_t *point_entry(const uint16_t *table, const
     return table + (size_t)i * 4;
 }
 
+/* Pixel u composited with point-table entry e. */
+static VF_ALWAYS_INLINE void point_blend(uint16_t *pixels, uint16_t *next, uint32_t u, const uint16_t *e)
+{
+    if (e[3] && vfi_blend_q15(pixels + (size_t)u * 4, e))
+        next[u] = (uint16_t)(u + 1);
+}
+
 /* point with a 16-bit table and one ray per voxel column: the loop on its own, everything it reads in locals (the
  * table's size too: the stores to the pixels might change cls->n as far as the compiler knows). With these and the
  * wrappers below, engine's point frame went from 63.1 M to 60.2 M instructions (callgrind, make bench's count).
- * Each pixel's entry is looked up one open pixel ahead of its blend, as preint1's loop does
+ * With VF_LOOK_AHEAD each pixel's entry is looked up one open pixel ahead of its blend, as preint1's loop does
  * (composite_order1.c), so that the branches on the entry do not wait for its load: engine's frame 5.12 -> 4.84 ms,
  * brainsmall's 6.73 -> 6.52, with 7% and 9% more instructions (medians of 16 and 10 round-robin runs). */
 static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *m, bool n256)
@@ -34,6 +41,11 @@ static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *
         a = a > job->clip_lo ? a : job->clip_lo;
         b = b < job->clip_hi + 1 ? b : job->clip_hi + 1;
         uint32_t u = a < b ? vfi_next_open(next, (uint32_t)a) : (uint32_t)b;
+        if (!VF_LOOK_AHEAD) {
+            for (; u < (uint32_t)b; u = vfi_next_open(next, u + 1))
+                point_blend(pixels, next, u, point_entry(table, data + (u - cu), row, fx, fy, n, n256));
+            continue;
+        }
         if (u >= (uint32_t)b)
             continue;
         const uint16_t *e = point_entry(table, data + (u - cu), row, fx, fy, n, n256);
@@ -41,8 +53,7 @@ static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *
             const uint32_t u_next = vfi_next_open(next, u + 1); /* a blend closes only the pixel it blends */
             const uint16_t *e_next =
                 u_next < (uint32_t)b ? point_entry(table, data + (u_next - cu), row, fx, fy, n, n256) : NULL;
-            if (e[3] && vfi_blend_q15(pixels + (size_t)u * 4, e))
-                next[u] = (uint16_t)(u + 1);
+            point_blend(pixels, next, u, e);
             if (u_next >= (uint32_t)b)
                 break;
             u = u_next, e = e_next;

@@ -42,48 +42,71 @@ static VF_NOINLINE void build_entry(const vfi_demand_t *demand, const uint16_t *
     vfi_preint_demand_diagonal(demand, k / n, k % n);
 }
 
-/* Pixel u's entry in the default path below (column c = u - cu): its front position from the buffer (buffered)
- * or sampled here, its back position sampled and stored for the next slab. */
-static VF_ALWAYS_INLINE const uint16_t *plain_entry(const plain_row_t *pr, uint32_t u, uint32_t c, bool buffered,
-                                                    uint32_t n)
+/* What span_plain's loop reads, in locals of the loop's own: the stores to the buffer and the pixels cannot make
+ * the compiler read them again (as first written the loop kept eleven values on the stack and read them every
+ * segment; plain_row_t, a struct of the caller's, is read again after every store where span_plain is out of line,
+ * as at -Os). */
+typedef struct plain_loop {
+    const uint8_t *top, *bottom;
+    const uint32_t *front_buf;
+    uint32_t *back_buf;
+    const uint16_t *table;
+    uint16_t *next, *pixels;
+    uint32_t cu, fx, fy, n;
+} plain_loop_t;
+
+/* Pixel u's entry: its front position from the buffer (buffered) or sampled here (pr's fields), its back position
+ * sampled and stored for the next slab. */
+static VF_ALWAYS_INLINE const uint16_t *plain_entry(const plain_loop_t *l, const plain_row_t *pr, uint32_t u,
+                                                    bool buffered)
 {
+    const uint32_t c = u - l->cu, n = l->n;
     uint32_t row_f; /* front entry times N */
     if (buffered) {
-        row_f = pr->front_buf[c];
+        row_f = l->front_buf[c];
     } else {
         uint64_t s = vfi_sample_at(pr->front + (u - pr->front_cu), pr->row, pr->front_fx, pr->front_fy);
         row_f = n * vfi_entry_of_sample_n(n, s);
     }
-    const uint32_t pos_b = vfi_entry_of_sample_n(n, vfi_sample_rows(pr->top + c, pr->bottom + c, pr->back_fx,
-                                                                    pr->back_fy));
-    pr->back_buf[c] = pos_b * n;
-    return pr->table + ((size_t)row_f + pos_b) * 4;
+    const uint32_t pos_b = vfi_entry_of_sample_n(n, vfi_sample_rows(l->top + c, l->bottom + c, l->fx, l->fy));
+    l->back_buf[c] = pos_b * n;
+    return l->table + ((size_t)row_f + pos_b) * 4;
+}
+
+/* Pixel u composited with entry e; in a table built as read, e's diagonal is built first if it is unbuilt. */
+static VF_ALWAYS_INLINE void plain_blend(const plain_loop_t *l, const plain_row_t *pr, uint32_t u, const uint16_t *e)
+{
+    if (VF_TABLE_ON_DEMAND && !e[3] && e[0] == VFI_UNBUILT_Q15) /* only ever in a table built as read */
+        build_entry(pr->demand, l->table, l->n, e);
+    if (e[3] && vfi_blend_q15(l->pixels + (size_t)(u - l->cu) * 4, e))
+        l->next[u] = (uint16_t)(u + 1);
 }
 
 /* The default path (nearest lookup, 16-bit table, no lut, full precision), where preint1 frames spend their time:
  * the open pixels from u, which is open, to y, their front entries from the buffer (buffered) or sampled here.
- * pr is a local of slab_rows that no call sees (build_entry takes what it needs by value), so gcc keeps the fields
- * the loop reads in registers across its stores: the same instructions as copying them to locals first (callgrind).
- * Each pixel's entry is looked up one open pixel ahead of its blend, so that the branches on the entry (seen,
- * opaque) do not wait for its load, which is mostly from L2 (a 512 KB table): engine's frame 6.42 -> 5.96 ms,
- * brainsmall's 7.51 -> 6.95, with 6% and 9% more instructions (round-robin runs of `volfix-sim bench VOLUME
- * --preset ramp`, medians of 16 and 10; point's loop does the same, composite_order0.c).
- * In a table built as read, an unbuilt entry's diagonal is built where the loop meets it (build_entry). Returns
- * the first open pixel at or after y. */
+ * With VF_LOOK_AHEAD each pixel's entry is looked up one open pixel ahead of its blend, so that the branches on the
+ * entry (seen, opaque) do not wait for its load, which is mostly from L2 (a 512 KB table): engine's frame 6.42 ->
+ * 5.96 ms, brainsmall's 7.51 -> 6.95, with 6% and 9% more instructions (round-robin runs of `volfix-sim bench
+ * VOLUME --preset ramp`, medians of 16 and 10; point's loop does the same, composite_order0.c). In a table built as
+ * read an unbuilt entry's diagonal is built where the loop meets it: with the image-sized buffer the look-ahead has
+ * stored the next pixel's back position over its front one, so the loop may not leave there and come back.
+ * Returns the first open pixel at or after y. */
 static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256)
 {
-    const uint32_t n = n256 ? 256 : pr->n;
+    const plain_loop_t l = {pr->top,         pr->bottom, pr->front_buf, pr->back_buf, pr->table, pr->next,
+                            pr->pixels,      pr->cu,     pr->back_fx,   pr->back_fy,  n256 ? 256 : pr->n};
+    if (!VF_LOOK_AHEAD) {
+        for (; u < y; u = vfi_next_open(l.next, u + 1))
+            plain_blend(&l, pr, u, plain_entry(&l, pr, u, buffered));
+        return u;
+    }
     if (u >= y)
         return u;
-    const uint16_t *e = plain_entry(pr, u, u - pr->cu, buffered, n);
+    const uint16_t *e = plain_entry(&l, pr, u, buffered);
     for (;;) {
-        /* the next open pixel: a blend closes only the pixel it blends */
-        const uint32_t u_next = vfi_next_open(pr->next, u + 1);
-        const uint16_t *e_next = u_next < y ? plain_entry(pr, u_next, u_next - pr->cu, buffered, n) : NULL;
-        if (VF_TABLE_ON_DEMAND && !e[3] && e[0] == VFI_UNBUILT_Q15) /* only ever in a table built as read */
-            build_entry(pr->demand, pr->table, n, e);
-        if (e[3] && vfi_blend_q15(pr->pixels + (size_t)(u - pr->cu) * 4, e))
-            pr->next[u] = (uint16_t)(u + 1);
+        const uint32_t u_next = vfi_next_open(l.next, u + 1); /* a blend closes only the pixel it blends */
+        const uint16_t *e_next = u_next < y ? plain_entry(&l, pr, u_next, buffered) : NULL;
+        plain_blend(&l, pr, u, e);
         if (u_next >= y)
             return u_next;
         u = u_next, e = e_next;

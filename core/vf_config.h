@@ -54,6 +54,14 @@
 #define VF_SPECIAL_LOOPS 1
 #endif
 
+/* The point and preint1 loops of the default path look each pixel's table entry up one open pixel ahead of its
+ * blend (composite_order0.c, composite_order1.c), so that on a core that runs ahead the branches on the entry do
+ * not wait for its load. 0: each entry looked up just before its blend, for cores without caches or out-of-order
+ * execution (the microcontroller's: see the Makefile's MCU_FEATURES). The same frames either way. */
+#ifndef VF_LOOK_AHEAD
+#define VF_LOOK_AHEAD 1
+#endif
+
 /* Most control points in a transfer function. */
 #ifndef VF_MAX_TF_POINTS
 #define VF_MAX_TF_POINTS 1024
