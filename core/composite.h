@@ -245,6 +245,14 @@ static VF_ALWAYS_INLINE void vfi_segment_order0(const row_job_t *job, const uint
         vfi_correct(c, seg);
 }
 
+/* Pixel u (at px) blended with 16-bit table entry e, and closed in the skip links next once opaque: the plain
+ * loops' step for a pixel. */
+static inline void vfi_blend_entry(uint16_t *px, uint16_t *next, uint32_t u, const uint16_t *e)
+{
+    if (e[3] && vfi_blend_q15(px, e))
+        next[u] = (uint16_t)(u + 1);
+}
+
 /* The first open pixel at or after u; halves the path it walked, so that runs of opaque pixels cost almost nothing
  * on the next slab. next[width] is always open. */
 static inline uint32_t vfi_next_open(uint16_t *next, uint32_t u)

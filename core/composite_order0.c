@@ -16,13 +16,6 @@ static VF_ALWAYS_INLINE const uint16_t *point_entry(const uint16_t *table, const
     return table + (size_t)i * 4;
 }
 
-/* Pixel u composited with point-table entry e. */
-static VF_ALWAYS_INLINE void point_blend(uint16_t *pixels, uint16_t *next, uint32_t u, const uint16_t *e)
-{
-    if (e[3] && vfi_blend_q15(pixels + (size_t)u * 4, e))
-        next[u] = (uint16_t)(u + 1);
-}
-
 /* point with a 16-bit table and one ray per voxel column: the loop on its own, everything it reads in locals (the
  * table's size too: the stores to the pixels might change cls->n as far as the compiler knows). With these and the
  * wrappers below, engine's point frame went from 63.1 M to 60.2 M instructions (callgrind, make bench's count).
@@ -43,7 +36,8 @@ static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *
         uint32_t u = a < b ? vfi_next_open(next, (uint32_t)a) : (uint32_t)b;
         if (!VF_LOOK_AHEAD) {
             for (; u < (uint32_t)b; u = vfi_next_open(next, u + 1))
-                point_blend(pixels, next, u, point_entry(table, data + (u - cu), row, fx, fy, n, n256));
+                vfi_blend_entry(pixels + (size_t)u * 4, next, u,
+                                point_entry(table, data + (u - cu), row, fx, fy, n, n256));
             continue;
         }
         if (u >= (uint32_t)b)
@@ -53,7 +47,7 @@ static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *
             const uint32_t u_next = vfi_next_open(next, u + 1); /* a blend closes only the pixel it blends */
             const uint16_t *e_next =
                 u_next < (uint32_t)b ? point_entry(table, data + (u_next - cu), row, fx, fy, n, n256) : NULL;
-            point_blend(pixels, next, u, e);
+            vfi_blend_entry(pixels + (size_t)u * 4, next, u, e);
             if (u_next >= (uint32_t)b)
                 break;
             u = u_next, e = e_next;

@@ -19,18 +19,25 @@
 
 /* What the plain loop reads for one row. The arrays are addressed by c = u - cu, the back slice's column of pixel
  * u (the slice buffer's rows have one element before column 0, for a front slice one column to the right of the
- * back one); a sampled front at u - front_cu of its slice row. */
-typedef struct plain_row {
-    uint32_t cu;                     /* the back slice's first pixel */
+ * back one); a sampled front at u - front_cu of its slice row. span_plain's loop works on a copy of loop, a local
+ * of its own: then the stores to the buffer and the pixels cannot make the compiler read these again (as first
+ * written the loop kept eleven values on the stack and read them every segment; read through the caller's struct,
+ * they are read again after every store where span_plain is out of line, as at -Os). */
+typedef struct plain_loop {
     const uint8_t *top, *bottom;     /* the back sample's two slice rows */
-    const uint8_t *front;            /* the front sample's first slice row */
     const uint32_t *front_buf;
     uint32_t *back_buf;
-    uint16_t *pixels, *next;
-    /* the same for every row of a slab */
-    uint32_t back_fx, back_fy, front_cu, front_fx, front_fy, row; /* Q0.16 fractions; bytes per slice row */
     const uint16_t *table;
-    uint32_t n;
+    uint16_t *next, *pixels;
+    uint32_t cu;                     /* the back slice's first pixel */
+    uint32_t fx, fy, n;              /* the back sample's fractions (Q0.16, the same for every row of a slab) */
+} plain_loop_t;
+
+typedef struct plain_row {
+    plain_loop_t loop;
+    const uint8_t *front;            /* the front sample's first slice row */
+    /* the same for every row of a slab */
+    uint32_t front_cu, front_fx, front_fy, row; /* Q0.16 fractions; bytes per slice row */
     const vfi_demand_t *demand;      /* the 2D table is built as it is read (tables.h), or NULL */
 } plain_row_t;
 
@@ -41,19 +48,6 @@ static VF_NOINLINE void build_entry(const vfi_demand_t *demand, const uint16_t *
     const uint32_t k = (uint32_t)(e - table) / 4;
     vfi_preint_demand_diagonal(demand, k / n, k % n);
 }
-
-/* What span_plain's loop reads, in locals of the loop's own: the stores to the buffer and the pixels cannot make
- * the compiler read them again (as first written the loop kept eleven values on the stack and read them every
- * segment; plain_row_t, a struct of the caller's, is read again after every store where span_plain is out of line,
- * as at -Os). */
-typedef struct plain_loop {
-    const uint8_t *top, *bottom;
-    const uint32_t *front_buf;
-    uint32_t *back_buf;
-    const uint16_t *table;
-    uint16_t *next, *pixels;
-    uint32_t cu, fx, fy, n;
-} plain_loop_t;
 
 /* Pixel u's entry: its front position from the buffer (buffered) or sampled here (pr's fields), its back position
  * sampled and stored for the next slab. */
@@ -78,8 +72,7 @@ static VF_ALWAYS_INLINE void plain_blend(const plain_loop_t *l, const plain_row_
 {
     if (VF_TABLE_ON_DEMAND && !e[3] && e[0] == VFI_UNBUILT_Q15) /* only ever in a table built as read */
         build_entry(pr->demand, l->table, l->n, e);
-    if (e[3] && vfi_blend_q15(l->pixels + (size_t)(u - l->cu) * 4, e))
-        l->next[u] = (uint16_t)(u + 1);
+    vfi_blend_entry(l->pixels + (size_t)(u - l->cu) * 4, l->next, u, e);
 }
 
 /* The default path (nearest lookup, 16-bit table, no lut, full precision), where preint1 frames spend their time:
@@ -93,8 +86,9 @@ static VF_ALWAYS_INLINE void plain_blend(const plain_loop_t *l, const plain_row_
  * Returns the first open pixel at or after y. */
 static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256)
 {
-    const plain_loop_t l = {pr->top,         pr->bottom, pr->front_buf, pr->back_buf, pr->table, pr->next,
-                            pr->pixels,      pr->cu,     pr->back_fx,   pr->back_fy,  n256 ? 256 : pr->n};
+    plain_loop_t l = pr->loop;
+    if (n256)
+        l.n = 256;
     if (!VF_LOOK_AHEAD) {
         for (; u < y; u = vfi_next_open(l.next, u + 1))
             plain_blend(&l, pr, u, plain_entry(&l, pr, u, buffered));
@@ -155,7 +149,7 @@ static VF_ALWAYS_INLINE void row(const row_job_t *job, const plain_row_t *pr, co
 {
     const vfi_span_t *last = last_row ? last_row->span : NULL;
     const uint32_t last_count = last_row ? last_row->count : 0;
-    uint16_t *next = plain ? pr->next : job->next;
+    uint16_t *next = plain ? pr->loop.next : job->next;
     uint32_t k = 0; /* the first of the last slab's runs that may reach the current pixel */
     for (uint32_t w = 0; w < count; w++) {
         const uint32_t b = walked[w].b;
@@ -195,15 +189,15 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
     plain_row_t pr;
     uint32_t j_f, j_b;
     const uint8_t *front_data = vfi_slice_row(front, row_bytes, job->step, s->v_lo, &j_f, &pr.front_fy);
-    const uint8_t *back_data = vfi_slice_row(back, row_bytes, job->step, s->v_lo, &j_b, &pr.back_fy);
+    const uint8_t *back_data = vfi_slice_row(back, row_bytes, job->step, s->v_lo, &j_b, &pr.loop.fy);
     if (plain) {
-        pr.cu = (uint32_t)back->cu;
-        pr.back_fx = back->fx;
+        pr.loop.cu = (uint32_t)back->cu;
+        pr.loop.fx = back->fx;
+        pr.loop.table = job->lookup.q15;
+        pr.loop.n = job->lookup.n;
         pr.front_cu = (uint32_t)front->cu;
         pr.front_fx = front->fx;
         pr.row = row_bytes;
-        pr.table = job->lookup.q15;
-        pr.n = job->lookup.n;
         pr.demand = job->demand;
     }
     const uint32_t *runs_f0 = runs + j_f, *runs_b0 = runs + j_b; /* row v_lo's */
@@ -219,13 +213,13 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
         if (runs_f[0] == runs_f[1] && runs_b[0] == runs_b[1])
             continue; /* nothing visible: the row is not walked, and the next slab samples its fronts */
         if (plain) {
-            pr.top = back_data + (size_t)k * row_bytes;
-            pr.bottom = pr.top + row_bytes;
+            pr.loop.top = back_data + (size_t)k * row_bytes;
+            pr.loop.bottom = pr.loop.top + row_bytes;
+            pr.loop.front_buf = front_buf + (size_t)k * s->buf_stride;
+            pr.loop.back_buf = back_buf + (size_t)k * s->buf_stride;
+            pr.loop.next = s->next + (size_t)k * s->next_stride;
+            pr.loop.pixels = s->pixels + (size_t)k * s->pixel_stride + (size_t)pr.loop.cu * 4;
             pr.front = front_data + (size_t)k * row_bytes;
-            pr.front_buf = front_buf + (size_t)k * s->buf_stride;
-            pr.back_buf = back_buf + (size_t)k * s->buf_stride;
-            pr.next = s->next + (size_t)k * s->next_stride;
-            pr.pixels = s->pixels + (size_t)k * s->pixel_stride + (size_t)pr.cu * 4;
         } else {
             job->front_buf = front_buf + (size_t)k * s->buf_stride;
             job->back_buf = back_buf + (size_t)k * s->buf_stride;
