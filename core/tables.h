@@ -111,6 +111,7 @@ typedef struct vfi_demand {
     const vfi_table_scratch_t *scratch; /* its intervals listed for this table, and room for a block's suffixes */
     vfi_table_out_t out;
     uint32_t slab_q16, visible_count;
+    bool grey;                          /* every interval's weight grey: preint.c builds one colour channel */
 } vfi_demand_t;
 void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, uint32_t slab_q16,
                              const vfi_table_scratch_t *scratch, vfi_table_out_t out);
