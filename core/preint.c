@@ -452,11 +452,11 @@ static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Intervals. */
 
-/* The records of the intervals, once a table: the weights (grey: every interval's three alike); step = (w - w_before) 2^30 + 2^29 and w_q60 = w 2^30
+/* The records of the intervals, once a table: the weights; step = (w - w_before) 2^30 + 2^29 and w_q60 = w 2^30
  * - 2^29 + the half of Q1.15 (block_dense's constants: the colourless records before the first interval and
  * after the last count as weight 0); the mean extinction (t0 + t1) / 2 in Q.24. An interval whose mean rounds to
  * 0 lets all through at every length: its t is set to 1 here, once; the others are listed for transmittances().
- * Returns how many are listed. */
+ * Returns how many are listed; *grey: whether every weight's three channels are equal (block_dense_grey). */
 static uint32_t list_intervals(const vfi_classify_t *cls, const vfi_table_scratch_t *scratch, bool *grey)
 {
     const uint32_t count = cls->n - 1;
