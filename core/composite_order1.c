@@ -50,12 +50,15 @@ static VF_NOINLINE void build_entry(const vfi_demand_t *demand, const uint16_t *
 }
 
 /* The nearest entry of the sample between slice rows p and q with fractions fx, fy in an n-entry table; n256: n is
- * 256, whose rounding vfi_entry256_rows folds into the lerps (two instructions a sample fewer: 0.5 M a frame of
- * engine's, with the pixels addressed by u 1.7 M; see span_plain). */
+ * 256, whose rounding vfi_entry256_rows folds into the lerps, with VF_SPECIAL_LOOPS: two instructions a sample fewer
+ * on x86-64, 0.5 M a frame of engine's (callgrind, make bench's count), but 6% more of the Cortex-M4's compositing
+ * at -Os (68,503 -> 72,470 ticks, `make mcu-run`). */
 static VF_ALWAYS_INLINE uint32_t plain_position(const uint8_t *p, const uint8_t *q, uint32_t fx, uint32_t fy,
                                                 uint32_t n, bool n256)
 {
-    return n256 ? vfi_entry256_rows(p, q, fx, fy) : vfi_entry_of_sample_n(n, vfi_sample_rows(p, q, fx, fy));
+    if (VF_SPECIAL_LOOPS && n256)
+        return vfi_entry256_rows(p, q, fx, fy);
+    return vfi_entry_of_sample_n(n, vfi_sample_rows(p, q, fx, fy));
 }
 
 /* Pixel u's entry: its front position from the buffer (buffered) or sampled here (pr's fields), its back position
