@@ -19,10 +19,10 @@
 
 /* What the plain loop reads for one row. The slice rows and buffers are addressed by c = u - cu, the back slice's
  * column of pixel u (the slice buffer's rows have one element before column 0, for a front slice one column to the
- * right of the back one), the pixels by u; a sampled front at u - front_cu of its slice row. span_plain's loop works on a copy of loop, a local
- * of its own: then the stores to the buffer and the pixels cannot make the compiler read these again (as first
- * written the loop kept eleven values on the stack and read them every segment; read through the caller's struct,
- * they are read again after every store where span_plain is out of line, as at -Os). */
+ * right of the back one), the pixels by u; a sampled front at u - front_cu of its slice row. span_plain's loop works
+ * on a copy of loop, a local of its own: then the stores to the buffer and the pixels cannot make the compiler read
+ * these again (as first written the loop kept eleven values on the stack and read them every segment; read through
+ * the caller's struct, they are read again after every store where span_plain is out of line, as at -Os). */
 typedef struct plain_loop {
     const uint8_t *top, *bottom;     /* the back sample's two slice rows */
     const uint32_t *front_buf;
