@@ -149,6 +149,14 @@ static inline uint64_t vfi_sample_at(const uint8_t *p, uint32_t row, uint32_t fx
     return vfi_sample_rows(p, p + row, fx, fy);
 }
 
+/* The nearest entry of an n-entry table for the sample between slice rows p and q with fractions fx, fy; n256 (n
+ * is 256): by vfi_entry256_rows, the same entry with the rounding folded into the lerps. The plain loops' look-up. */
+static VF_ALWAYS_INLINE uint32_t vfi_entry_rows(const uint8_t *p, const uint8_t *q, uint32_t fx, uint32_t fy,
+                                                uint32_t n, bool n256)
+{
+    return n256 ? vfi_entry256_rows(p, q, fx, fy) : vfi_entry_of_sample_n(n, vfi_sample_rows(p, q, fx, fy));
+}
+
 /* The column of slice sl that pixel u samples, and its fraction fx (Q0.16). */
 static inline uint32_t vfi_column(const slice_place_t *sl, uint32_t step, uint32_t u, uint32_t *fx)
 {

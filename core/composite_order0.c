@@ -6,14 +6,11 @@
 #include "composite.h"
 
 
-/* The point-table entry of the sample at p (its two slice rows p and p + row). n256: a 256-entry table, whose
- * entry is vfi_entry256_rows. */
+/* The point-table entry of the sample at p (its two slice rows p and p + row). n256: a 256-entry table. */
 static VF_ALWAYS_INLINE const uint16_t *point_entry(const uint16_t *table, const uint8_t *p, uint32_t row, uint32_t fx,
                                                     uint32_t fy, uint32_t n, bool n256)
 {
-    const uint32_t i = n256 ? vfi_entry256_rows(p, p + row, fx, fy)
-                            : vfi_entry_of_sample_n(n, vfi_sample_at(p, row, fx, fy));
-    return table + (size_t)i * 4;
+    return table + (size_t)vfi_entry_rows(p, p + row, fx, fy, n, n256) * 4;
 }
 
 /* point with a 16-bit table and one ray per voxel column: the loop on its own, everything it reads in locals (the

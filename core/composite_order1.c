@@ -49,32 +49,23 @@ static VF_NOINLINE void build_entry(const vfi_demand_t *demand, const uint16_t *
     vfi_preint_demand_diagonal(demand, k / n, k % n);
 }
 
-/* The nearest entry of the sample between slice rows p and q with fractions fx, fy in an n-entry table; n256: n is
- * 256, whose rounding vfi_entry256_rows folds into the lerps, with VF_SPECIAL_LOOPS: two instructions a sample fewer
- * on x86-64, 0.5 M a frame of engine's (callgrind, make bench's count), but 6% more of the Cortex-M4's compositing
- * at -Os (68,503 -> 72,470 ticks, `make mcu-run`). */
-static VF_ALWAYS_INLINE uint32_t plain_position(const uint8_t *p, const uint8_t *q, uint32_t fx, uint32_t fy,
-                                                uint32_t n, bool n256)
-{
-    if (VF_SPECIAL_LOOPS && n256)
-        return vfi_entry256_rows(p, q, fx, fy);
-    return vfi_entry_of_sample_n(n, vfi_sample_rows(p, q, fx, fy));
-}
-
 /* Pixel u's entry: its front position from the buffer (buffered) or sampled here (pr's fields), its back position
- * sampled and stored for the next slab. */
+ * sampled and stored for the next slab. A 256-entry table's rounding is folded into the lerps (vfi_entry_rows) only
+ * with VF_SPECIAL_LOOPS: two instructions a sample fewer on x86-64, 0.5 M a frame of engine's (callgrind, make
+ * bench's count), but 6% more of the Cortex-M4's compositing at -Os (68,503 -> 72,470 ticks, `make mcu-run`). */
 static VF_ALWAYS_INLINE const uint16_t *plain_entry(const plain_loop_t *l, const plain_row_t *pr, uint32_t u,
                                                     bool buffered, bool n256)
 {
     const uint32_t c = u - l->cu, n = l->n;
+    const bool fold = VF_SPECIAL_LOOPS && n256;
     uint32_t row_f; /* front entry times N */
     if (buffered) {
         row_f = l->front_buf[c];
     } else {
         const uint8_t *p = pr->front + (u - pr->front_cu);
-        row_f = n * plain_position(p, p + pr->row, pr->front_fx, pr->front_fy, n, n256);
+        row_f = n * vfi_entry_rows(p, p + pr->row, pr->front_fx, pr->front_fy, n, fold);
     }
-    const uint32_t pos_b = plain_position(l->top + c, l->bottom + c, l->fx, l->fy, n, n256);
+    const uint32_t pos_b = vfi_entry_rows(l->top + c, l->bottom + c, l->fx, l->fy, n, fold);
     l->back_buf[c] = pos_b * n;
     return l->table + ((size_t)row_f + pos_b) * 4;
 }

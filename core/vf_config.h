@@ -51,7 +51,7 @@
  * default path for table sizes other than 256 (engine's point frame at 128 entries: 64.7 M instructions, 86.0 M
  * with the general loop; callgrind, make bench's count), and the 2D table builder's block for grey transfer
  * functions (preint.c, block_dense_grey), and preint1's 256-entry rounding folded into its lerps (composite_order1.c,
- * plain_position). 0 leaves them out (Cortex-M4 code: about 120 bytes for the loop, 226
+ * plain_entry). 0 leaves them out (Cortex-M4 code: about 120 bytes for the loop, 226
  * for the block, `make mcu MCU_FEATURES=`). */
 #ifndef VF_SPECIAL_LOOPS
 #define VF_SPECIAL_LOOPS 1
