@@ -59,7 +59,7 @@ CORE_CFLAGS += $(EXTRA_CFLAGS)
 PKG_CONFIG ?= pkg-config
 PORT_LIBS  := -lpng -lz -lpthread -lm
 
-# Optional backends, compiled in when pkg-config finds their library (port/display.h, port/input.h). A private
+# Optional backends, compiled in when pkg-config finds their library (port/display/display.h, port/input/input.h). A private
 # libgpiod (the 2.x test in make test-hw) comes in through GPIOD_PKG_CONFIG_PATH.
 have = $(shell $(PKG_CONFIG) --exists $(1) 2>/dev/null && echo 1)
 PORT_DEFS :=
@@ -89,7 +89,7 @@ endif
 HOST_CFLAGS += $(EXTRA_CFLAGS) $(PORT_DEFS)
 
 CORE_SRC := $(wildcard core/*.c)
-PORT_SRC := $(wildcard port/*.c)
+PORT_SRC := $(filter-out port/viewer/%,$(wildcard port/*/*.c))
 SIM_SRC  := $(wildcard host-sim/*.c) $(wildcard host-sim/ref/*.c) $(wildcard host-sim/truth/*.c)
 SIM_MAIN := host-sim/main.c
 VIEWER_SRC := $(wildcard port/viewer/*.c)
@@ -127,13 +127,14 @@ $(BUILD)/core/%.o: core/%.c $(wildcard core/*.h) | $(BUILD)/core
 # instructions than it saved (callgrind, 256-entry table: 8.09 M with it, 7.76 M without).
 $(BUILD)/core/preint.o: CORE_CFLAGS += -fno-tree-slp-vectorize
 
-$(BUILD)/port/%.o: port/%.c $(wildcard core/volfix.h core/vf_config.h port/*.h) | $(BUILD)/port
-	$(CC) $(HOST_CFLAGS) -c $< -o $@
-
-$(BUILD)/port/viewer/%.o: port/viewer/%.c $(wildcard core/volfix.h port/*.h port/viewer/*.h) | $(BUILD)/port/viewer
+$(BUILD)/port/viewer/%.o: port/viewer/%.c $(wildcard core/volfix.h port/*/*.h) | $(BUILD)/port/viewer
 	$(CC) $(HOST_CFLAGS) -Iport/viewer -c $< -o $@
 
-$(BUILD)/host-sim/%.o: host-sim/%.c $(wildcard core/volfix.h port/*.h host-sim/*.h host-sim/ref/*.h) \
+$(BUILD)/port/%.o: port/%.c $(wildcard core/volfix.h core/vf_config.h port/*/*.h)
+	@mkdir -p $(@D)
+	$(CC) $(HOST_CFLAGS) -c $< -o $@
+
+$(BUILD)/host-sim/%.o: host-sim/%.c $(wildcard core/volfix.h port/*/*.h host-sim/*.h host-sim/ref/*.h) \
                        $(wildcard host-sim/truth/*.h) | $(BUILD)/host-sim/ref $(BUILD)/host-sim/truth
 	$(CC) $(HOST_CFLAGS) -c $< -o $@
 
@@ -277,7 +278,7 @@ $(FUZZ_BUILD)/core/%.o: core/%.c $(wildcard core/*.h)
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c $< -o $@
 
-$(FUZZ_BUILD)/port/%.o: port/%.c $(wildcard core/volfix.h core/vf_config.h port/*.h)
+$(FUZZ_BUILD)/port/%.o: port/%.c $(wildcard core/volfix.h core/vf_config.h port/*/*.h)
 	@mkdir -p $(@D)
 	$(FUZZ_CC) $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c $< -o $@
 
@@ -346,7 +347,7 @@ $(MCU_BUILD)/core/%.o: core/%.c $(wildcard core/*.h) $(MCU_BUILD)/core.flags
 $(MCU_BUILD)/libvolfix.a: $(MCU_CORE_OBJ)
 	rm -f $@ && $(MCU_CROSS)ar rcs $@ $^
 
-$(MCU_BUILD)/gen_scene: $(MCU_DIR)/gen_scene.c $(LIBSIM) $(LIBPORT) $(LIBVOLFIX) $(wildcard host-sim/*.h port/*.h)
+$(MCU_BUILD)/gen_scene: $(MCU_DIR)/gen_scene.c $(LIBSIM) $(LIBPORT) $(LIBVOLFIX) $(wildcard host-sim/*.h port/*/*.h)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_CFLAGS) -o $@ $< $(LIBSIM) $(LIBPORT) $(LIBVOLFIX) $(LDFLAGS) $(PORT_LIBS)
 

@@ -5,7 +5,7 @@
 
 #include "commands.h"
 #include "imgcmp.h"
-#include "pngio.h"
+#include "io/pngio.h"
 #include "scene.h"
 
 static const char usage_head[] =

@@ -6,8 +6,8 @@
 
 #include "commands.h"
 #include "imgcmp.h"
-#include "pngio.h"
-#include "volume.h"
+#include "io/pngio.h"
+#include "io/volume.h"
 
 static const char usage[] =
     "usage: volfix-sim diff A.png B.png [--max N] [--diff DIFF.png] [--json]\n"

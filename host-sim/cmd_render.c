@@ -2,7 +2,7 @@
 #include <stdio.h>
 
 #include "commands.h"
-#include "pngio.h"
+#include "io/pngio.h"
 #include "scene.h"
 
 static const char usage_head[] =
@@ -10,7 +10,7 @@ static const char usage_head[] =
     "Render one image of VOLUME with the fixed-point core (or, with --reference, with the double-precision\n"
     "reference of the same algorithm, or with --truth, with the ground-truth ray caster) and write it as PNG.\n\n"
     "  -o FILE              the PNG to write\n"
-    "  --hash               print the frame's FNV-1a 64-bit hash over its pixel bytes (port/image.h), to\n"
+    "  --hash               print the frame's FNV-1a 64-bit hash over its pixel bytes (port/render/image.h), to\n"
     "                       compare frames across machines; with or without -o\n"
     "  --reference          use the double-precision reference renderer\n"
     "  --truth              use the ground-truth ray caster (trilinear, continuous transfer function, exact\n"

@@ -10,10 +10,10 @@
 
 #include "commands.h"
 #include "options.h"
-#include "pngio.h"
+#include "io/pngio.h"
 #include "ref/ref.h"
-#include "render_mt.h"
-#include "tf.h"
+#include "render/render_mt.h"
+#include "io/tf.h"
 
 static const char usage[] =
     "usage: volfix-sim tables [--preset NAME | --tf FILE] [--size N] [--slab D] [--bits 8|16] [-o TABLE.png]\n"

@@ -3,7 +3,7 @@
 #define SIM_OPTIONS_H
 
 #include "volfix.h"
-#include "volume.h"
+#include "io/volume.h"
 
 typedef struct sim_opts {
     const char *volume;        /* file or phantom:NAME:N */

@@ -8,9 +8,9 @@
 
 #include "options.h"
 #include "ref/ref.h"
-#include "render_mt.h"
-#include "tf.h"
-#include "volume.h"
+#include "render/render_mt.h"
+#include "io/tf.h"
+#include "io/volume.h"
 
 typedef struct sim_scene {
     vfp_volume_t vol;

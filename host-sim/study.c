@@ -6,7 +6,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "pngio.h"
+#include "io/pngio.h"
 
 static int to_rgb(const vf_image_t *img, uint8_t **rgb)
 {

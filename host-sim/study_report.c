@@ -10,9 +10,9 @@
 #include <string.h>
 #include <time.h>
 
-#include "pngio.h"
+#include "io/pngio.h"
 #include "study.h"
-#include "tf.h"
+#include "io/tf.h"
 
 #define MCU_RAM (256u * 1024u)
 

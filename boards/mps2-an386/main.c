@@ -7,7 +7,7 @@
  * through semihosting:
  *
  *   hash H          FNV-1a 64 of the frame's pixel bytes, row by row: the same number as
- *                   `volfix-sim render ... --hash` (port/image.c vfp_image_hash)
+ *                   `volfix-sim render ... --hash` (port/render/image.c vfp_image_hash)
  *   memory lines    the arena's high-water mark and what the renderer holds by part (vf_renderer_memory),
  *                   the band scratch, the frame and the stack a frame touched
  *   timer ticks     per stage, from the board's 25 MHz timer (under qemu -icount shift=0: instructions / 40)
@@ -135,7 +135,7 @@ static uint32_t ticks(void)
     return 0xFFFFFFFFu - TIMER_VALUE;
 }
 
-/* FNV-1a 64 over the pixel bytes, row by row: port/image.c's vfp_image_hash. */
+/* FNV-1a 64 over the pixel bytes, row by row: port/render/image.c's vfp_image_hash. */
 static uint64_t frame_hash(const vf_image_t *image)
 {
     uint64_t h = UINT64_C(0xcbf29ce484222325);

@@ -12,7 +12,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "overlay.h"
+#include "display/overlay.h"
 
 #define MAX_EVENTS 64
 #define MAX_PENDING 4096        /* input events waiting for their frame, for the latency figures */

@@ -20,13 +20,13 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "board.h"
-#include "controls.h"
-#include "display.h"
-#include "input.h"
-#include "render_mt.h"
-#include "tf.h"
-#include "volume.h"
+#include "board/board.h"
+#include "input/controls.h"
+#include "display/display.h"
+#include "input/input.h"
+#include "render/render_mt.h"
+#include "io/tf.h"
+#include "io/volume.h"
 
 #define VIEWER_MAX_TFS 16
 #define VIEWER_ERR_LEN 512

@@ -6,7 +6,7 @@
 #      emulation, and the frames below cover what they render);
 #   2. every scene of tests/cross/scenes rendered by the native volfix-sim and by the target's, for 1, 2 and 4
 #      threads: `volfix-sim render SCENE --threads N --hash` must print the same FNV-1a hash of the frame's
-#      pixel bytes (port/image.h) everywhere, and the threaded frames must equal the single-threaded one.
+#      pixel bytes (port/render/image.h) everywhere, and the threaded frames must equal the single-threaded one.
 #
 # The cross builds are static (Makefile, cross settings), so qemu-aarch64 and qemu-arm run them without a target
 # root file system. Prints "ok - NAME" / "not ok - NAME: why" per check and ends with "N passed, N failed".

@@ -20,7 +20,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "volume.h"
+#include "io/volume.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -1,5 +1,5 @@
 /* fuzz_board.c: a board file, read as the viewer reads x.board (vfp_board_load). */
-#include "board.h"
+#include "board/board.h"
 #include "fuzz.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

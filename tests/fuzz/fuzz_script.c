@@ -2,10 +2,10 @@
  * with four knobs and two buttons (as boards/host-headless.board), then from a string (vfp_script_load_string)
  * with no board (any of VFP_MAX_KNOBS knobs and VFP_MAX_BUTTONS buttons); the events are read to the end and must
  * be what the script's checks promise. */
-#include "board.h"
+#include "board/board.h"
 #include "fuzz.h"
-#include "input.h"
-#include "input_backends.h"
+#include "input/input.h"
+#include "input/input_backends.h"
 
 /* Reads every event: in time order, each naming a control of the board, a turn a non-zero number of detents. */
 static void drain(vfp_input_t *in, int knobs, int buttons)

@@ -2,7 +2,7 @@
  * the windows of an 8-bit and a 16-bit volume (vfp_tf_to_core), move it as the level and width knobs do
  * (vfp_tf_move), and hand the points to the core, which must accept them (vf_point_table). */
 #include "fuzz.h"
-#include "tf.h"
+#include "io/tf.h"
 
 #define TABLE_SIZE 32
 

@@ -11,7 +11,7 @@
 
 #include "check.h"
 #include "imgcmp.h"
-#include "pngio.h"
+#include "io/pngio.h"
 #include "scene.h"
 
 static const struct {

@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 
 #include "check.h"
-#include "pngio.h"
+#include "io/pngio.h"
 #include "scene.h"
 
 typedef struct shape {

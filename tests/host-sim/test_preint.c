@@ -13,7 +13,7 @@
 
 #include "check.h"
 #include "imgcmp.h"
-#include "pngio.h"
+#include "io/pngio.h"
 #include "scene.h"
 
 static uint16_t table_a[256 * 256 * 4], table_b[256 * 256 * 4];

@@ -7,7 +7,7 @@
  * pixels, warped) rises with R.
  */
 #include "check.h"
-#include "pngio.h"
+#include "io/pngio.h"
 #include "ref/ref.h"
 #include "study.h"
 #include "truth/truth.h"

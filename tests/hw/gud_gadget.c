@@ -21,7 +21,7 @@
  * SET_BUFFER before it (one comes only after a failed transfer, and must then cover the whole display).
  * It runs until SIGTERM or SIGINT, then unbinds and removes the gadget.
  *
- * The protocol constants come from port/gud_protocol.h (written from the kernel's include/drm/gud.h); the
+ * The protocol constants come from port/display/gud_protocol.h (written from the kernel's include/drm/gud.h); the
  * replies are packed here byte by byte, independently of display_gud.c's helpers, so that a wrong layout on one
  * side is not hidden by the same mistake on the other.
  */
@@ -46,7 +46,7 @@
 #include <lz4.h>
 #endif
 
-#include "gud_protocol.h"
+#include "display/gud_protocol.h"
 #include "hwtest.h"
 
 /* Requests gud_protocol.h has no name for (the host may send them; the gadget answers or refuses them). */

@@ -1,5 +1,5 @@
 /*
- * test_gpio.c: the "gpiod" input backend (port/input_gpiod.c, gpio_decoder.c) against the kernel's GPIO
+ * test_gpio.c: the "gpiod" input backend (port/input/input_gpiod.c, gpio_decoder.c) against the kernel's GPIO
  * character device, with the lines simulated by gpio-sim inside the test VM (tests/hw/README.md). Built twice,
  * against libgpiod 1.6 and 2.x; the test names carry the version loaded at run time.
  *
@@ -30,7 +30,7 @@
 #include <unistd.h>
 
 #include "hwtest.h"
-#include "input.h"
+#include "input/input.h"
 
 #define SIM "/sys/kernel/config/gpio-sim"
 #define LABEL "volfix-knobs"
@@ -140,7 +140,7 @@ static void add_edge(int line, int value, int bounces)
     }
 }
 
-/* One detent of knob (lines a, b) from rest (both high): clockwise is A leading B (port/encoder.c). */
+/* One detent of knob (lines a, b) from rest (both high): clockwise is A leading B (port/input/encoder.c). */
 static void add_detent(int a, int b, int dir, int bounces)
 {
     int first = dir > 0 ? a : b, second = dir > 0 ? b : a;

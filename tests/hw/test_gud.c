@@ -1,5 +1,5 @@
 /*
- * test_gud.c: the "gud" display backend (port/display_gud.c, libusb) against a GUD device made in the same Linux
+ * test_gud.c: the "gud" display backend (port/display/display_gud.c, libusb) against a GUD device made in the same Linux
  * VM by gud_gadget.c over dummy_hcd and FunctionFS (tests/hw/README.md). For each gadget configuration it
  * starts the gadget, opens the backend through vfp_display_find("gud"), presents known frames and checks that
  * the frame the gadget holds equals them pixel for pixel, and reads the gadget's log of control requests to
@@ -20,11 +20,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "display.h"
+#include "display/display.h"
 #include "hwtest.h"
-#include "render_mt.h"
-#include "tf.h"
-#include "volume.h"
+#include "render/render_mt.h"
+#include "io/tf.h"
+#include "io/volume.h"
 
 #define W 64
 #define H 48

@@ -1,5 +1,5 @@
 /* test_board.c: the board files in boards/ load with the values they say, and every kind of mistake in a board
- * file gives one line "FILE:LINE: what was expected" (port/board.c and board_check.c). Run from the repository's
+ * file gives one line "FILE:LINE: what was expected" (port/board/board.c and board_check.c). Run from the repository's
  * top (run.sh does). */
 #include <dirent.h>
 #include <stdio.h>
@@ -9,7 +9,7 @@
 
 #include <linux/input-event-codes.h>
 
-#include "board.h"
+#include "board/board.h"
 #include "check.h"
 
 #ifdef VFP_HAVE_SDL

@@ -1,11 +1,11 @@
-/* test_controls.c: the viewer's input-to-view mapping (port/controls.c) and the overlay's font (overlay.c). */
+/* test_controls.c: the viewer's input-to-view mapping (port/input/controls.c) and the overlay's font (overlay.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
-#include "controls.h"
-#include "overlay.h"
+#include "input/controls.h"
+#include "display/overlay.h"
 
 static vfp_board_t board_with_knobs(void)
 {

@@ -12,12 +12,12 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "display.h"
-#include "display_backends.h" /* the fbdev backend's table and seams */
+#include "display/display.h"
+#include "display/display_backends.h" /* the fbdev backend's table and seams */
 #ifdef VFP_HAVE_SDL
 #include <SDL.h>
 
-#include "sdl_shared.h"
+#include "display/sdl_shared.h"
 #endif
 
 static vfp_board_t board_named(const char *display, const char *device)

@@ -3,7 +3,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "gud_protocol.h"
+#include "display/gud_protocol.h"
 
 /* A valid descriptor: version 1, flags STATUS_ON_SET, LZ4, 64 KiB buffer, 1x1 to 480x320. */
 static const uint8_t good_descriptor[GUD_DISPLAY_DESCRIPTOR_SIZE] = {

@@ -28,8 +28,8 @@
 #endif
 
 #include "check.h"
-#include "display.h"
-#include "gud_protocol.h"
+#include "display/display.h"
+#include "display/gud_protocol.h"
 
 #define DEVNODE "/dev/bus/usb/001/011"
 #define SYSPATH "/sys/devices/pci0000:00/0000:00:14.0/usb1/1-3"

@@ -6,9 +6,9 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "display.h"
-#include "display_backends.h" /* the png backend's table */
-#include "pngio.h"
+#include "display/display.h"
+#include "display/display_backends.h" /* the png backend's table */
+#include "io/pngio.h"
 
 static char tmp_dir[64];
 

@@ -1,6 +1,6 @@
-/* test_encoder.c: the quadrature decoder and the button debouncer (port/encoder.c), edge by edge. */
+/* test_encoder.c: the quadrature decoder and the button debouncer (port/input/encoder.c), edge by edge. */
 #include "check.h"
-#include "input.h"
+#include "input/input.h"
 
 #define MS 1000000ull /* ns */
 

@@ -2,7 +2,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "image.h"
+#include "render/image.h"
 
 static void hash_is_fnv1a_64_over_the_pixel_bytes(void)
 {

@@ -1,4 +1,4 @@
-/* test_input_evdev.c: the evdev backend (port/input_evdev.c).
+/* test_input_evdev.c: the evdev backend (port/input/input_evdev.c).
  *
  * Run as it is, it feeds struct input_event records through pipes (the backend's open-from-fds seam): draining,
  * one turn event per knob per read, presses in order, autorepeat ignored, several devices behind one epoll fd, a
@@ -18,8 +18,8 @@
 #include <linux/input.h>
 
 #include "check.h"
-#include "input.h"
-#include "input_backends.h" /* the seam in port/input_evdev.c */
+#include "input/input.h"
+#include "input/input_backends.h" /* the seam in port/input/input_evdev.c */
 
 #define NOW 777000000000ull /* what the tests pass as now_ns */
 

@@ -1,4 +1,4 @@
-/* test_input_gpiod.c: the GPIO backend's decoding path (port/gpio_decoder.c) with synthetic edges: two lines of an
+/* test_input_gpiod.c: the GPIO backend's decoding path (port/input/gpio_decoder.c) with synthetic edges: two lines of an
  * encoder delivered out of order as libgpiod 1.x delivers them (one line's fd after the other), bouncing contacts,
  * and buttons that settle between reads. Compiled with or without libgpiod: the decoder needs none. With libgpiod,
  * also the message for a chip label that is not there (real lines are tested in tests/hw on gpio-sim). */
@@ -6,8 +6,8 @@
 #include <string.h>
 
 #include "check.h"
-#include "input.h"
-#include "input_backends.h" /* the decoder's interface */
+#include "input/input.h"
+#include "input/input_backends.h" /* the decoder's interface */
 
 #define MS 1000000ull
 #define A0 17 /* knob 0 */

@@ -1,4 +1,4 @@
-/* test_input_script.c: scripted input (port/input_script.c) and finding backends by name (port/input.c). */
+/* test_input_script.c: scripted input (port/input/input_script.c) and finding backends by name (port/input/input.c). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -6,8 +6,8 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "input.h"
-#include "input_backends.h" /* the seam in port/input_script.c */
+#include "input/input.h"
+#include "input/input_backends.h" /* the seam in port/input/input_script.c */
 
 #define MS 1000000ull
 #define START (5000 * MS) /* the scripts' time 0 */

@@ -1,4 +1,4 @@
-/* test_input_sdl.c: the SDL keys backend (port/input_sdl.c) on SDL's dummy video driver, with key events pushed
+/* test_input_sdl.c: the SDL keys backend (port/input/input_sdl.c) on SDL's dummy video driver, with key events pushed
  * into SDL's queue: boards/host-sdl.board's keys turn its knobs and press its buttons. Without SDL in the build,
  * only that the backend is reported as not compiled in. */
 #include <stdlib.h>
@@ -6,7 +6,7 @@
 #include <time.h>
 
 #include "check.h"
-#include "input.h"
+#include "input/input.h"
 
 #ifdef VFP_HAVE_SDL
 #include <SDL.h>

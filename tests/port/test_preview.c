@@ -1,14 +1,14 @@
 /* test_preview.c: what the viewer's preview and its level and width knobs stand on: downsampled volumes
- * (port/volume_downsample.c), vfp_tf_move (tf.c), and renderers that take a new transfer function or window
+ * (port/io/volume_downsample.c), vfp_tf_move (tf.c), and renderers that take a new transfer function or window
  * without rebuilding more than that (render_mt.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
-#include "render_mt.h"
-#include "controls.h"
-#include "tf.h"
+#include "render/render_mt.h"
+#include "input/controls.h"
+#include "io/tf.h"
 #include "volume_fixtures.h"
 
 /* A 5 x 4 x 3 int16 raw volume with negative values, loaded with and without downsampling. */

@@ -1,4 +1,4 @@
-/* test_tf.c: transfer-function files (port/tf.c) where tests/fuzz found or showed them wrong: scalars far outside
+/* test_tf.c: transfer-function files (port/io/tf.c) where tests/fuzz found or showed them wrong: scalars far outside
  * the window, lines longer than a buffer, NUL bytes. The file format's ordinary errors are in tests/host-sim/cli.sh. */
 #include <math.h>
 #include <stdio.h>
@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "tf.h"
+#include "io/tf.h"
 #include "volume_fixtures.h" /* fx_write: files in a private temporary directory */
 
 static int load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "volume.h"
+#include "io/volume.h"
 #include "volume_fixtures.h"
 
 /* The head of a valid 3x4x5 header; tests add or replace lines. */

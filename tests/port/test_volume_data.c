@@ -11,7 +11,7 @@
 #include <sys/stat.h>
 
 #include "check.h"
-#include "volume.h"
+#include "io/volume.h"
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Helpers */

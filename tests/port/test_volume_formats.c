@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "volume.h"
+#include "io/volume.h"
 #include "volume_fixtures.h"
 
 /* A NIfTI-1 header's fields, written in either byte order by nii_header. */

@@ -15,7 +15,7 @@
 #include <zlib.h>
 
 #include "check.h"
-#include "volume.h"
+#include "io/volume.h"
 
 /* The fixture volume: 3 x 4 x 5 voxels, distinct values in every byte, so a swapped or shifted byte shows. */
 #define FX_X 3

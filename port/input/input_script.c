@@ -11,7 +11,7 @@
  * due at now_ns, each stamped with its scheduled time (not the time it was read), so a run is reproducible. */
 #include "input.h"
 #include "input_backends.h"
-#include "printable.h"
+#include "io/printable.h"
 
 #include <errno.h>
 #include <limits.h>

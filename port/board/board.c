@@ -3,7 +3,7 @@
  * board_check.c takes over once the last line is read (defaults, and checks across keys), and board_names.c holds
  * the long name tables (board_internal.h). */
 #include "board_internal.h"
-#include "printable.h"
+#include "io/printable.h"
 
 #include <errno.h>
 #include <limits.h>

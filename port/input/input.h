@@ -15,7 +15,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "board.h"
+#include "board/board.h"
 
 typedef enum vfp_event_type {
     VFP_EV_TURN,    /* knob `control` turned `steps` detents (signed; positive clockwise) */

@@ -12,7 +12,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "board.h"
+#include "board/board.h"
 #include "input.h"
 
 #ifdef VFP_HAVE_GPIOD

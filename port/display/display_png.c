@@ -12,7 +12,7 @@
  *********************/
 #include "display.h"
 #include "display_backends.h"
-#include "pngio.h"
+#include "io/pngio.h"
 
 #include <errno.h>
 #include <stdio.h>

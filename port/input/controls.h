@@ -8,7 +8,7 @@
 #ifndef VFP_CONTROLS_H
 #define VFP_CONTROLS_H
 
-#include "board.h"
+#include "board/board.h"
 #include "input.h"
 #include "volfix.h"
 

@@ -19,7 +19,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "board.h"
+#include "board/board.h"
 #include "volfix.h"
 
 #define VFP_DISPLAY_LOST 3

@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "sdl_shared.h"
+#include "display/sdl_shared.h"
 
 #define POLL_NS 10000000u /* how often the viewer should look at SDL's queue */
 
