@@ -4,6 +4,7 @@
  * freed singly, so there is nothing to leak.
  */
 #include "arena.h"
+#include "volfix_internal.h"
 
 void vf_arena_init(vf_arena_t *arena, void *buffer, size_t size)
 {
@@ -14,7 +15,7 @@ void vf_arena_init(vf_arena_t *arena, void *buffer, size_t size)
     arena->used = 0;
     arena->peak = 0;
     arena->allocs = 0;
-    arena->fail_after = 0;
+    arena->reserved = 0; /* no fault injected */
     /* Align the start so that block sizes, not the buffer's address, decide how much fits. */
     size_t misalign = (size_t)((uintptr_t)buffer % VFI_ALIGN);
     if (misalign)
@@ -31,8 +32,8 @@ void *vfi_arena_alloc(vf_arena_t *arena, size_t bytes)
     if (bytes > SIZE_MAX - VFI_ALIGN)
         return NULL;
     size_t block = vfi_arena_block(bytes);
-    if (arena->fail_after && arena->allocs >= arena->fail_after)
-        return NULL;
+    if (arena->reserved && arena->allocs >= arena->reserved)
+        return NULL; /* vfi_arena_fail_after */
     if (!arena->base || block > arena->size - arena->used)
         return NULL;
     void *p = arena->base + arena->used;
@@ -61,4 +62,10 @@ void vfi_zero(void *p, size_t bytes)
     unsigned char *b = p;
     for (size_t i = 0; i < bytes; i++)
         b[i] = 0;
+}
+
+void vfi_arena_fail_after(vf_arena_t *arena, uint32_t count)
+{
+    if (arena)
+        arena->reserved = count;
 }

@@ -4,6 +4,7 @@
  */
 #include "arena.h"
 #include "render.h"
+#include "volfix_internal.h"
 
 static vf_status_t check_params(const vf_params_t *p);
 static vf_status_t check_volume(const vf_volume_t *v);
@@ -155,70 +156,53 @@ const vf_params_t *vf_renderer_params(const vf_renderer_t *r)
     return r ? &r->params : NULL;
 }
 
-/* Factor the view and bring the tables up to date, the 2D table in parts when parts > 1, or as compositing reads
- * it when one_thread. */
-static VF_ALWAYS_INLINE vf_status_t begin(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h,
-                                          uint32_t parts, bool one_thread)
+vf_status_t vf_renderer_begin(vf_renderer_t *r, const vf_frame_t *frame)
 {
-    if (!r || !view)
+    if (!r || !frame)
         return VF_ERR_NULL;
     r->have_frame = false;
-    if (parts < 1 || parts > VF_MAX_TABLE_PARTS)
+    const uint32_t parts = frame->table_parts ? frame->table_parts : 1;
+    if (parts > VF_MAX_TABLE_PARTS || (parts > 1 && frame->one_thread))
         return VF_ERR_ARG;
     if (!r->have_window || !r->have_tf || !r->have_runs)
         return VF_ERR_STATE;
-    vf_status_t s = vf_factor(&r->factor, &r->volume, view, out_w, out_h);
+    vf_status_t s = vf_factor(&r->factor, &r->volume, &frame->view, frame->width, frame->height);
     if (s == VF_OK)
         s = vf_factor_rays(&r->factor, r->params.rays); /* fits: checked against the largest view at create */
     if (s != VF_OK)
         return s;
-    update_tables(r, parts, one_thread);
+    update_tables(r, parts, frame->one_thread);
     if (VF_MAX_TABLE_PARTS > 1)
         r->frame_parts = parts;
     r->have_frame = true;
     return VF_OK;
 }
 
-vf_status_t vf_render_begin(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h)
-{
-    return begin(r, view, out_w, out_h, 1, false);
-}
-
-#if VF_TABLE_ON_DEMAND
-vf_status_t vf_render_begin_one_thread(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h)
-{
-    return begin(r, view, out_w, out_h, 1, true);
-}
-#endif
-
-#if VF_MAX_TABLE_PARTS > 1
-vf_status_t vf_render_begin_parts(vf_renderer_t *r, const vf_view_t *view, uint32_t out_w, uint32_t out_h,
-                                  uint32_t parts)
-{
-    return begin(r, view, out_w, out_h, parts, false);
-}
-
-uint32_t vf_render_tables_pending(const vf_renderer_t *r)
+uint32_t vf_renderer_table_parts(const vf_renderer_t *r)
 {
     return r && r->have_frame && !tables_complete(r) ? r->table_parts : 0;
 }
 
-size_t vf_table_part_bytes(const vf_renderer_t *r)
+size_t vf_renderer_table_part_bytes(const vf_renderer_t *r)
 {
     return r ? VFI_ALIGN + vfi_table_scratch_bytes(r->params.table_size) : 0;
 }
 
-vf_status_t vf_render_tables_part(vf_renderer_t *r, uint32_t part, void *scratch, size_t bytes)
+vf_status_t vf_renderer_build_table_part(vf_renderer_t *r, uint32_t part, void *scratch, size_t bytes)
 {
     if (!r || !scratch)
         return VF_ERR_NULL;
     if (!r->have_frame)
         return VF_ERR_STATE;
+#if VF_MAX_TABLE_PARTS == 1
+    (void)bytes; /* a build for one core has no parts: begin built the table */
+    return part == 0 ? VF_OK : VF_ERR_ARG;
+#else
     if (part >= r->frame_parts)
         return VF_ERR_ARG;
     if (part >= r->table_parts || r->table_part_done[part])
         return VF_OK; /* nothing to build: the table was up to date, or this part has run */
-    if (bytes < vf_table_part_bytes(r))
+    if (bytes < vf_renderer_table_part_bytes(r))
         return VF_ERR_NOMEM; /* the promised size, whatever the buffer's alignment */
     const vfi_table_out_t out = table_out(r);
     if (r->parts_build) {
@@ -233,20 +217,20 @@ vf_status_t vf_render_tables_part(vf_renderer_t *r, uint32_t part, void *scratch
         vfi_view_table_part(r->lut_f, r->lut_g, out.q15, r->view_table, r->params.table_size, part, r->table_parts);
     r->table_part_done[part] = true;
     return VF_OK;
-}
 #endif
+}
 
-const vf_factor_t *vf_render_factor(const vf_renderer_t *r)
+const vf_factor_t *vf_renderer_factor(const vf_renderer_t *r)
 {
     return r && r->have_frame ? &r->factor : NULL;
 }
 
-size_t vf_band_scratch_bytes(const vf_renderer_t *r, uint32_t band_rows)
+size_t vf_renderer_band_scratch_bytes(const vf_renderer_t *r, uint32_t band_rows)
 {
     return r ? vfi_band_scratch_bytes(r, band_rows) : 0;
 }
 
-vf_status_t vf_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes)
+vf_status_t vf_renderer_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes)
 {
     if (!r || !scratch)
         return VF_ERR_NULL;
@@ -259,7 +243,7 @@ vf_status_t vf_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, 
     return vfi_composite_band(r, v0, v1, scratch, bytes);
 }
 
-vf_status_t vf_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint32_t y0, uint32_t y1)
+vf_status_t vf_renderer_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint32_t y0, uint32_t y1)
 {
     if (!r || !image)
         return VF_ERR_NULL;
@@ -268,31 +252,32 @@ vf_status_t vf_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint32
     return vfi_warp_band(r, image, y0, y1);
 }
 
-vf_status_t vf_render(vf_renderer_t *r, const vf_view_t *view, const vf_image_t *image, void *scratch, size_t bytes)
+vf_status_t vf_renderer_draw(vf_renderer_t *r, const vf_view_t *view, const vf_image_t *image, void *scratch, size_t bytes)
 {
-    if (!image)
+    if (!image || !view)
         return VF_ERR_NULL;
-    vf_status_t s = vf_render_begin(r, view, image->width, image->height);
+    const vf_frame_t frame = {*view, image->width, image->height, 0, false};
+    vf_status_t s = vf_renderer_begin(r, &frame);
     if (s == VF_OK)
-        s = vf_composite_band(r, 0, r->factor.int_h, scratch, bytes);
+        s = vf_renderer_composite_band(r, 0, r->factor.int_h, scratch, bytes);
     if (s == VF_OK)
-        s = vf_warp_band(r, image, 0, image->height);
+        s = vf_renderer_warp_band(r, image, 0, image->height);
     return s;
 }
 
-const uint16_t *vf_render_intermediate(const vf_renderer_t *r)
+const uint16_t *vfi_renderer_intermediate(const vf_renderer_t *r)
 {
     return r && r->have_frame ? r->intermediate : NULL;
 }
 
-const uint16_t *vf_render_point_table(const vf_renderer_t *r)
+const uint16_t *vfi_renderer_point_table(const vf_renderer_t *r)
 {
     return r && r->tables_valid && tables_complete(r) && r->params.table_bits != 8 && r->params.mode != VF_MODE_PREINT1
                ? r->table
                : NULL;
 }
 
-const uint16_t *vf_render_preint_table(const vf_renderer_t *r)
+const uint16_t *vfi_renderer_preint_table(const vf_renderer_t *r)
 {
 #if VF_TABLE_ON_DEMAND
     if (r && r->table_unbuilt)
@@ -432,7 +417,7 @@ static vf_status_t encode_runs(vf_renderer_t *r)
 
 /* The tables depend on the transfer function and on the slab length, which changes with the view; with the
  * lut correction they are built for length 1 once per transfer function and the lut follows the view, applied to
- * every entry of a view table if there is one. A 2D table asked for in parts is left to vf_render_tables_part
+ * every entry of a view table if there is one. A 2D table asked for in parts is left to vf_renderer_build_table_part
  * (its diagonals, or only their view-table entries), and counts as built once every part has run. */
 static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
 {

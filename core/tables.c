@@ -194,12 +194,12 @@ static vf_status_t build(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, int w
     return s;
 }
 
-vf_status_t vf_point_table(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_arena_t *scratch, uint16_t *out)
+vf_status_t vf_table_point(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_arena_t *scratch, uint16_t *out)
 {
     return build(tf, n, slab_q16, 0, scratch, out);
 }
 
-vf_status_t vf_preint_table(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_builder_t builder,
+vf_status_t vf_table_preint(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_builder_t builder,
                             vf_arena_t *scratch, uint16_t *out)
 {
     if ((unsigned)builder >= VF_BUILDER_COUNT)

@@ -22,7 +22,7 @@
 #endif
 
 /* Most parts a frame's pre-integrated table can be built in side by side (vf_render_begin_parts); 1 for a
- * single-core build, which then has no vf_render_begin_parts and vf_render_tables_part. */
+ * single-core build, which then has no vf_render_begin_parts and vf_renderer_build_table_part. */
 #ifndef VF_MAX_TABLE_PARTS
 #define VF_MAX_TABLE_PARTS 64
 #endif
@@ -40,7 +40,7 @@
 #define VF_TABLE_ON_DEMAND 1
 #endif
 
-/* The brute-force O(N^3) table builder, the incremental builder's test oracle (vf_preint_table with
+/* The brute-force O(N^3) table builder, the incremental builder's test oracle (vf_table_preint with
  * VF_BUILDER_BRUTEFORCE, about 500 bytes of Cortex-M4 code): 0 leaves it out, and asking for it gives
  * VF_ERR_UNSUPPORTED. Renderers never use it. */
 #ifndef VF_TABLE_ORACLE

@@ -5,16 +5,15 @@
  * has no mutable globals: the caller hands in an arena (a buffer it owns), every fallible call returns a
  * vf_status_t, and nothing prints or aborts. docs/algorithm.md defines every pixel this code produces.
  *
- * A frame's path (DESIGN.md):
- *   vf_renderer_create     once per volume and parameter set (reserves all fixed-size memory)
- *   vf_renderer_set_window when the window changes: the volume is resampled to 8-bit slices, one copy per axis
- *   vf_renderer_set_tf     when the transfer function changes: classification and run-length encoding
- *   vf_render_begin        per frame: factor the view; rebuild the tables if the slab length changed
- *                          (vf_render_begin_parts and vf_render_tables_part: the same, the table on threads;
- *                          vf_render_begin_one_thread: the table built as compositing reads it)
- *   vf_composite_band      per band of intermediate rows (threads may run bands at once)
- *   vf_warp_band           per band of output rows (threads may run bands at once)
- * vf_render() runs the last three on one thread.
+ * A frame's path:
+ *   vf_renderer_create          once per volume and parameter set (reserves all fixed-size memory)
+ *   vf_renderer_set_window      when the window changes: the volume is resampled to 8-bit slices, one copy per axis
+ *   vf_renderer_set_tf          when the transfer function changes: classification and run-length encoding
+ *   vf_renderer_begin           per frame: factor the view; bring the tables up to date for its slab length
+ *   vf_renderer_build_table_part  (threads only) the parts of a stale pre-integrated table, side by side
+ *   vf_renderer_composite_band  per band of intermediate rows (threads may run bands at once)
+ *   vf_renderer_warp_band       per band of output rows (threads may run bands at once)
+ * vf_renderer_draw runs a whole frame on the calling thread.
  */
 #ifndef VOLFIX_H
 #define VOLFIX_H
@@ -60,7 +59,7 @@ typedef struct vf_arena {
     size_t used;         /* bytes handed out, including alignment padding */
     size_t peak;         /* high-water mark of used */
     uint32_t allocs;     /* allocations made */
-    uint32_t fail_after; /* fault injection for tests: allocation number fail_after+1 fails (0: never) */
+    uint32_t reserved;   /* the core's own; vf_arena_init clears it */
 } vf_arena_t;
 
 void vf_arena_init(vf_arena_t *arena, void *buffer, size_t size);
@@ -239,54 +238,54 @@ size_t vf_renderer_needed_bytes(const vf_renderer_t *renderer);
 void vf_renderer_memory(const vf_renderer_t *renderer, vf_memory_t *memory);
 const vf_params_t *vf_renderer_params(const vf_renderer_t *renderer);
 
-/* Per frame. Begin factors the view and rebuilds the tables when the slab length changed. */
-vf_status_t vf_render_begin(vf_renderer_t *renderer, const vf_view_t *view, uint32_t out_w, uint32_t out_h);
-const vf_factor_t *vf_render_factor(const vf_renderer_t *renderer);
+/* A frame: the view, the output size, and how the caller will run it. Zero-initialise and set view, width and
+ * height for a frame on one thread; the other fields only matter to callers with threads. */
+typedef struct vf_frame {
+    vf_view_t view;
+    uint32_t width, height; /* the output image's size */
+    uint32_t table_parts;   /* 0 or 1: begin builds a stale pre-integrated table (a new transfer function or slab
+                             * length; the one serial part of a preint1 frame, growing as N^2) itself.
+                             * 2..VF_MAX_TABLE_PARTS: begin leaves it in that many parts, which the caller runs on
+                             * threads with vf_renderer_build_table_part before compositing. The table is the
+                             * same, to the bit, in any number of parts. */
+    bool one_thread;        /* every band of this frame is composited on the calling thread, one after another:
+                             * then a stale 2D table is built as compositing first reads each of its diagonals,
+                             * only the diagonals the frame uses (the default preint1 path; otherwise, and in
+                             * builds without VF_TABLE_ON_DEMAND, as begin would). The same pixels either way. */
+} vf_frame_t;
 
-/* A frame on several threads. vf_render_begin builds a table that went stale (a new transfer function or slab
- * length) on the calling thread; in preint1 that is the one serial part of a frame, and it grows as N^2.
- * vf_render_begin_parts leaves the 2D table to be built in parts
- * (1 .. VF_MAX_TABLE_PARTS; 1 is vf_render_begin): then vf_render_tables_pending says how many, and
- * vf_render_tables_part must run once for each part 0 .. pending - 1, side by side on any threads, each with its
- * own scratch of vf_table_part_bytes, before any band is composited (vf_composite_band returns VF_ERR_STATE
- * until then). The table is the same, to the bit, in any number of parts. With the lut correction and a view
- * table (vf_config.h, VF_VIEW_TABLE) the parts also correct their entries of it for a new slab length. Order-0
- * tables are small and always built in begin. */
-#if VF_TABLE_ON_DEMAND
-/* A frame whose bands are all composited on the calling thread, one after another (never side by side): the frame
- * vf_render_begin gives, to the bit, but a stale 2D table is built as compositing first reads each of its
- * diagonals, so that the frame builds only the diagonals its segments use (in the default preint1 path: nearest
- * lookup, 16-bit table, rebuild, no precision study, one ray, no partial slabs; otherwise as vf_render_begin).
- * vf_render_preint_table gives NULL while some diagonals are unbuilt. */
-vf_status_t vf_render_begin_one_thread(vf_renderer_t *renderer, const vf_view_t *view, uint32_t out_w,
-                                       uint32_t out_h);
-#endif
+/* Factor the frame's view and bring the tables up to date. VF_ERR_ARG for table_parts above
+ * VF_MAX_TABLE_PARTS or together with one_thread. */
+vf_status_t vf_renderer_begin(vf_renderer_t *renderer, const vf_frame_t *frame);
 
-#if VF_MAX_TABLE_PARTS > 1 /* a build for one core (VF_MAX_TABLE_PARTS 1) leaves them out */
-vf_status_t vf_render_begin_parts(vf_renderer_t *renderer, const vf_view_t *view, uint32_t out_w, uint32_t out_h,
-                                  uint32_t parts);
-uint32_t vf_render_tables_pending(const vf_renderer_t *renderer);
-size_t vf_table_part_bytes(const vf_renderer_t *renderer);
-vf_status_t vf_render_tables_part(vf_renderer_t *renderer, uint32_t part, void *scratch, size_t scratch_bytes);
-#endif
+/* The factorisation of the frame begun last; NULL before one. */
+const vf_factor_t *vf_renderer_factor(const vf_renderer_t *renderer);
+
+/* After a begin with table_parts > 1: how many parts of the table are to be built (0 when it was up to date), the
+ * scratch each part needs, and the build of part 0 .. parts - 1, each once, on any threads, each with its own
+ * scratch. vf_renderer_composite_band returns VF_ERR_STATE until every part has run. With the lut correction and
+ * a view table (vf_config.h, VF_VIEW_TABLE) the parts also correct their entries of it for a new slab length. */
+uint32_t vf_renderer_table_parts(const vf_renderer_t *renderer);
+size_t vf_renderer_table_part_bytes(const vf_renderer_t *renderer);
+vf_status_t vf_renderer_build_table_part(vf_renderer_t *renderer, uint32_t part, void *scratch, size_t scratch_bytes);
 
 /* Bytes of scratch a band of band_rows intermediate rows needs (buffer slices and skip links). */
-size_t vf_band_scratch_bytes(const vf_renderer_t *renderer, uint32_t band_rows);
+size_t vf_renderer_band_scratch_bytes(const vf_renderer_t *renderer, uint32_t band_rows);
 
 /* Composite intermediate rows [v0, v1) (0 <= v0 < v1 <= factor->int_h). Bands may run concurrently on
  * different threads, each with its own scratch; every band must finish before any warp band starts. */
-vf_status_t vf_composite_band(const vf_renderer_t *renderer, uint32_t v0, uint32_t v1, void *scratch,
-                              size_t scratch_bytes);
+vf_status_t vf_renderer_composite_band(const vf_renderer_t *renderer, uint32_t v0, uint32_t v1, void *scratch,
+                                       size_t scratch_bytes);
 
-/* Warp final rows [y0, y1) into image (whose size must equal the size given to vf_render_begin). */
-vf_status_t vf_warp_band(const vf_renderer_t *renderer, const vf_image_t *image, uint32_t y0, uint32_t y1);
+/* Warp final rows [y0, y1) into image (whose size must equal the frame's width and height). */
+vf_status_t vf_renderer_warp_band(const vf_renderer_t *renderer, const vf_image_t *image, uint32_t y0, uint32_t y1);
 
-/* The whole frame on one thread: begin, composite all rows, warp all rows. */
-vf_status_t vf_render(vf_renderer_t *renderer, const vf_view_t *view, const vf_image_t *image, void *scratch,
-                      size_t scratch_bytes);
+/* A whole frame on the calling thread: begin, composite all rows, warp all rows into image. */
+vf_status_t vf_renderer_draw(vf_renderer_t *renderer, const vf_view_t *view, const vf_image_t *image, void *scratch,
+                             size_t scratch_bytes);
 
 /* ---------------------------------------------------------------------------------------------------------- */
-/* Tables on their own, for tools and tests. An entry is Q1.15 r, g, b, a (colour premultiplied); the 2D table is
+/* Tables on their own, for tools (volfix-sim tables) and other renderers. An entry is Q1.15 r, g, b, a (colour premultiplied); the 2D table is
  * indexed [front * n + back]. scratch provides the classification and the builders' working memory
  * (vf_table_scratch_bytes); it is rewound afterwards. */
 
@@ -298,15 +297,9 @@ typedef enum vf_builder {
 } vf_builder_t;
 
 size_t vf_table_scratch_bytes(uint32_t n);
-vf_status_t vf_point_table(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_arena_t *scratch, uint16_t *out);
-vf_status_t vf_preint_table(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_builder_t builder,
+vf_status_t vf_table_point(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_arena_t *scratch, uint16_t *out);
+vf_status_t vf_table_preint(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_builder_t builder,
                             vf_arena_t *scratch, uint16_t *out);
-
-/* Read-only access for tests and tools: the current intermediate image (Q1.15 RGBA, int_w * int_h pixels) and
- * tables (Q1.15 r, g, b, a per entry, colour premultiplied; the 2D table is indexed [front * N + back]). NULL before they exist. */
-const uint16_t *vf_render_intermediate(const vf_renderer_t *renderer);
-const uint16_t *vf_render_point_table(const vf_renderer_t *renderer);  /* 16-bit tables only */
-const uint16_t *vf_render_preint_table(const vf_renderer_t *renderer);
 
 #ifdef __cplusplus
 }

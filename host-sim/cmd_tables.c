@@ -73,7 +73,7 @@ static double build_ms(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_buil
     double best = 1e30;
     for (int k = 0; k < repeat; k++) {
         double t0 = vfp_now_ms();
-        *status = vf_preint_table(tf, n, slab_q16, builder, arena, out);
+        *status = vf_table_preint(tf, n, slab_q16, builder, arena, out);
         double ms = vfp_now_ms() - t0;
         best = ms < best ? ms : best;
     }

@@ -78,7 +78,7 @@ int sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, 
     if (status == 0)
         status = vfp_render_frame(&r, &s->view, img, err, errlen);
     if (status == 0 && factor)
-        *factor = *vf_render_factor(r.core);
+        *factor = *vf_renderer_factor(r.core);
     vfp_render_close(&r);
     if (status)
         sim_image_free(img);

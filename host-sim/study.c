@@ -219,7 +219,7 @@ static int render_core(study_t *st, int scene, const vf_params_t *params, uint8_
         if (run) {
             run->ms = vfp_now_ms() - t0;
             vf_renderer_memory(r.core, &run->memory);
-            run->band_bytes = vf_band_scratch_bytes(r.core, 8);
+            run->band_bytes = vf_renderer_band_scratch_bytes(r.core, 8);
             status = time_frames(st, &r, &s->view, &img, run, err, errlen);
         }
     }

@@ -667,7 +667,7 @@ static size_t mcu_bytes(const vf_params_t *p)
         vf_tf_t core_tf = {pts, vfp_tf_to_core(&tf, &vol, vfp_default_window(&vol), pts)};
         if (buf && vf_renderer_create(&r, p, &vol.core, &arena) == VF_OK &&
             vf_renderer_set_window(r, vfp_default_window(&vol)) == VF_OK && vf_renderer_set_tf(r, &core_tf) == VF_OK)
-            total = arena.used + vf_band_scratch_bytes(r, 8);
+            total = arena.used + vf_renderer_band_scratch_bytes(r, 8);
         free(buf);
     }
     vfp_volume_free(&vol);

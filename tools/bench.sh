@@ -27,7 +27,7 @@ for n in 256 1024; do
 done
 echo
 
-# A stale table is the serial part of a preint1 frame; with threads it is built in parts (vf_render_tables_part).
+# A stale table is the serial part of a preint1 frame; with threads it is built in parts (vf_renderer_build_table_part).
 v=$(echo $volumes | cut -d' ' -f1)
 echo "== the table on threads: $(basename "$v") preint1, $size, the table rebuilt every frame, 3 rounds"
 echo "   (one thread builds the diagonals as compositing reads them: its table time is begin's marking only)"

@@ -73,10 +73,10 @@ static int measure(const sim_scene_t *s, uint32_t band_rows, size_t *arena_bytes
         *arena_bytes = vf_renderer_needed_bytes(r);
         if (*arena_bytes < arena.peak)
             *arena_bytes = arena.peak;
-        vf_view_t view = s->view;
-        st = vf_render_begin(r, &view, s->width, s->height);
+        const vf_frame_t frame = {.view = s->view, .width = s->width, .height = s->height};
+        st = vf_renderer_begin(r, &frame);
         /* the band height is fixed, so the scratch a band needs does not depend on the view */
-        *scratch_bytes = vf_band_scratch_bytes(r, band_rows);
+        *scratch_bytes = vf_renderer_band_scratch_bytes(r, band_rows);
     }
     free(buffer);
     if (st != VF_OK) {

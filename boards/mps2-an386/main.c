@@ -68,21 +68,22 @@ int main(void)
     }
     t[2] = ticks();
 
-    /* One frame, as vf_render does it but in bands: the scratch then holds SCENE_BAND_ROWS rows, not the whole
+    /* One frame, as vf_renderer_draw does it but in bands: the scratch then holds SCENE_BAND_ROWS rows, not the whole
      * intermediate image's, and bands give the same pixels as one pass (they are what threads share). */
     const vf_image_t image = {frame, SCENE_WIDTH, SCENE_HEIGHT, SCENE_WIDTH * SCENE_PIXEL_BYTES, SCENE_FORMAT};
-    if ((s = vf_render_begin(r, &scene_view, SCENE_WIDTH, SCENE_HEIGHT)) != VF_OK)
-        return failed("vf_render_begin", s);
+    const vf_frame_t frame_options = {.view = scene_view, .width = SCENE_WIDTH, .height = SCENE_HEIGHT};
+    if ((s = vf_renderer_begin(r, &frame_options)) != VF_OK)
+        return failed("vf_renderer_begin", s);
     t[3] = ticks();
-    const uint32_t int_h = vf_render_factor(r)->int_h;
+    const uint32_t int_h = vf_renderer_factor(r)->int_h;
     for (uint32_t v0 = 0; v0 < int_h; v0 += SCENE_BAND_ROWS) {
         const uint32_t v1 = int_h - v0 < SCENE_BAND_ROWS ? int_h : v0 + SCENE_BAND_ROWS;
-        if ((s = vf_composite_band(r, v0, v1, scratch, sizeof scratch)) != VF_OK)
-            return failed("vf_composite_band", s);
+        if ((s = vf_renderer_composite_band(r, v0, v1, scratch, sizeof scratch)) != VF_OK)
+            return failed("vf_renderer_composite_band", s);
     }
     t[4] = ticks();
-    if ((s = vf_warp_band(r, &image, 0, SCENE_HEIGHT)) != VF_OK)
-        return failed("vf_warp_band", s);
+    if ((s = vf_renderer_warp_band(r, &image, 0, SCENE_HEIGHT)) != VF_OK)
+        return failed("vf_renderer_warp_band", s);
     t[5] = ticks();
 
     sh_puts("hash ");
@@ -99,9 +100,9 @@ int main(void)
     report("", m.classify, ", tables ");
     report("", m.tables, ", intermediate ");
     report("", m.intermediate, ")\n");
-    report("band scratch: ", vf_band_scratch_bytes(r, SCENE_BAND_ROWS), " bytes for ");
+    report("band scratch: ", vf_renderer_band_scratch_bytes(r, SCENE_BAND_ROWS), " bytes for ");
     report("", SCENE_BAND_ROWS, " rows (buffer slices and skip links; ");
-    report("", vf_band_scratch_bytes(r, int_h), " for all ");
+    report("", vf_renderer_band_scratch_bytes(r, int_h), " for all ");
     report("", int_h, " rows at once)\n");
     report("frame: ", sizeof frame, " bytes\n");
     report("stack: ", startup_stack_used(), " bytes used");

@@ -87,16 +87,12 @@ int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *i
     double t0 = vfp_now_ms();
     /* with threads, a table that went stale is built in a part a thread; on one, the bands (one after another)
      * build the diagonals they read */
-#if VF_TABLE_ON_DEMAND
-    vf_status_t s = r->threads == 1 ? vf_render_begin_one_thread(r->core, view, image->width, image->height)
-                                    : vf_render_begin_parts(r->core, view, image->width, image->height,
-                                                            (uint32_t)r->threads);
-#else
-    vf_status_t s = vf_render_begin_parts(r->core, view, image->width, image->height, (uint32_t)r->threads);
-#endif
-    if (s == VF_OK && vf_render_tables_pending(r->core)) {
+    const vf_frame_t frame = {.view = *view, .width = image->width, .height = image->height,
+                              .table_parts = r->threads > 1 ? (uint32_t)r->threads : 0, .one_thread = r->threads == 1};
+    vf_status_t s = vf_renderer_begin(r->core, &frame);
+    if (s == VF_OK && vf_renderer_table_parts(r->core)) {
         band_work_t tables = {.r = r, .image = image, .stage = STAGE_TABLES};
-        tables.bands = vf_render_tables_pending(r->core);
+        tables.bands = vf_renderer_table_parts(r->core);
         s = spread(r, &tables);
     }
     if (s != VF_OK) {
@@ -104,7 +100,7 @@ int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *i
         return 2;
     }
     double t1 = vfp_now_ms();
-    const vf_factor_t *f = vf_render_factor(r->core);
+    const vf_factor_t *f = vf_renderer_factor(r->core);
     band_work_t work = {.r = r, .image = image, .rows = f->int_h, .stage = STAGE_COMPOSITE};
     work.bands = (f->int_h + r->band_rows - 1) / r->band_rows;
     s = spread(r, &work);
@@ -150,9 +146,9 @@ static int create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t er
         return 2;
     }
     /* Scratch for the tallest band or a table part, per thread; the core sizes it for any view of this volume. */
-    r->scratch_bytes = vf_band_scratch_bytes(r->core, r->band_rows);
-    if (r->threads > 1 && vf_table_part_bytes(r->core) > r->scratch_bytes)
-        r->scratch_bytes = vf_table_part_bytes(r->core);
+    r->scratch_bytes = vf_renderer_band_scratch_bytes(r->core, r->band_rows);
+    if (r->threads > 1 && vf_renderer_table_part_bytes(r->core) > r->scratch_bytes)
+        r->scratch_bytes = vf_renderer_table_part_bytes(r->core);
     for (int t = 0; t < r->threads; t++) {
         free(r->scratch[t]);
         r->scratch[t] = malloc(r->scratch_bytes);
@@ -204,13 +200,13 @@ static void *run_bands(void *arg)
             break;
         vf_status_t s;
         if (work->stage == STAGE_TABLES) {
-            s = vf_render_tables_part(r->core, band, r->scratch[w->index], r->scratch_bytes);
+            s = vf_renderer_build_table_part(r->core, band, r->scratch[w->index], r->scratch_bytes);
         } else if (work->stage == STAGE_WARP) {
             uint32_t y0 = band * WARP_BAND, y1 = y0 + WARP_BAND < work->rows ? y0 + WARP_BAND : work->rows;
-            s = vf_warp_band(r->core, work->image, y0, y1);
+            s = vf_renderer_warp_band(r->core, work->image, y0, y1);
         } else {
             uint32_t v0 = band * r->band_rows, v1 = v0 + r->band_rows < work->rows ? v0 + r->band_rows : work->rows;
-            s = vf_composite_band(r->core, v0, v1, r->scratch[w->index], r->scratch_bytes);
+            s = vf_renderer_composite_band(r->core, v0, v1, r->scratch[w->index], r->scratch_bytes);
         }
         if (s != VF_OK) {
             int expected = VF_OK;

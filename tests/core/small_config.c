@@ -9,6 +9,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "frame.h"
 #include "volfix.h"
 
 #define NX 21
@@ -67,17 +68,17 @@ static vf_status_t frame(vf_renderer_t *r, const vf_view_t *view, uint64_t *hash
 #if VF_MAX_TABLE_PARTS > 1
     /* the whole core builds its table in 3 parts (the last first), the small core in begin */
     if (s == VF_OK)
-        s = vf_render_begin_parts(r, view, im.width, im.height, 3);
-    for (uint32_t part = vf_render_tables_pending(r); s == VF_OK && part-- > 0;)
-        s = vf_render_tables_part(r, part, scratch, sizeof scratch);
+        s = begin_frame(r, view, im.width, im.height, 3, false);
+    for (uint32_t part = vf_renderer_table_parts(r); s == VF_OK && part-- > 0;)
+        s = vf_renderer_build_table_part(r, part, scratch, sizeof scratch);
 #else
     if (s == VF_OK)
-        s = vf_render_begin(r, view, im.width, im.height);
+        s = begin_frame(r, view, im.width, im.height, 0, false);
 #endif
     if (s == VF_OK)
-        s = vf_composite_band(r, 0, vf_render_factor(r)->int_h, scratch, sizeof scratch);
+        s = vf_renderer_composite_band(r, 0, vf_renderer_factor(r)->int_h, scratch, sizeof scratch);
     if (s == VF_OK)
-        s = vf_warp_band(r, &im, 0, im.height);
+        s = vf_renderer_warp_band(r, &im, 0, im.height);
     if (s == VF_OK)
         *hash = fnv1a(pixels, sizeof pixels);
     return s;
@@ -135,7 +136,7 @@ static vf_status_t oracle_table(void)
     vf_tf_t tf = {points, 2};
     vf_arena_t arena;
     vf_arena_init(&arena, scratch, sizeof scratch);
-    return vf_preint_table(&tf, 16, 65536, VF_BUILDER_BRUTEFORCE, &arena, table);
+    return vf_table_preint(&tf, 16, 65536, VF_BUILDER_BRUTEFORCE, &arena, table);
 }
 
 int main(void)

@@ -7,6 +7,7 @@
 
 #include "arena.h"
 #include "check.h"
+#include "volfix_internal.h"
 
 /* 16-byte aligned backing store with room to misalign it on purpose */
 static _Alignas(64) unsigned char store[4096 + 64];
@@ -20,7 +21,7 @@ static void alignment(void)
     CHECK_EQ(a.used, 0);
     CHECK_EQ(a.peak, 0);
     CHECK_EQ(a.allocs, 0);
-    CHECK_EQ(a.fail_after, 0);
+    CHECK_EQ(a.reserved, 0); /* no fault injected */
     const size_t sizes[] = {1, 3, 16, 17, 31, 32, 33, 5, 100};
     size_t expect_used = 0;
     for (size_t n = 0; n < sizeof sizes / sizeof sizes[0]; n++) {
@@ -125,7 +126,7 @@ static void fault_injection(void)
     for (uint32_t fail = 1; fail <= 5; fail++) {
         vf_arena_t a;
         vf_arena_init(&a, store, 1024);
-        a.fail_after = fail;
+        vfi_arena_fail_after(&a, fail);
         for (uint32_t n = 1; n <= 8; n++) {
             void *p = vfi_arena_alloc(&a, 8);
             if (n <= fail)
@@ -137,14 +138,13 @@ static void fault_injection(void)
         CHECK_EQ(a.used, 16 * fail);
     }
     vf_arena_t a;
-    vf_arena_init(&a, store, 1024);
-    CHECK_EQ(a.fail_after, 0);
+    vf_arena_init(&a, store, 1024); /* a fresh arena injects no fault */
     for (int n = 0; n < 64; n++)
         CHECK(vfi_arena_alloc(&a, 16) != NULL);
     /* setting fail_after on a used arena counts the allocations already made */
     vf_arena_init(&a, store, 1024);
     CHECK(vfi_arena_alloc(&a, 1) && vfi_arena_alloc(&a, 1));
-    a.fail_after = 2;
+    vfi_arena_fail_after(&a, 2);
     CHECK(vfi_arena_alloc(&a, 1) == NULL);
 }
 

@@ -859,7 +859,7 @@ static void correction_lut(void)
     }
 }
 
-/* The public table API (vf_point_table, vf_preint_table) checks every argument, refuses a short scratch arena
+/* The public table API (vf_table_point, vf_table_preint) checks every argument, refuses a short scratch arena
  * and a bad transfer function, and takes nothing from the arena whatever happens. */
 static void table_api_arguments(void)
 {
@@ -870,28 +870,28 @@ static void table_api_arguments(void)
     vf_arena_t arena;
     vf_arena_init(&arena, buf, sizeof buf);
     const uint32_t slab = 65536;
-    CHECK_EQ(vf_point_table(NULL, 64, slab, &arena, out), VF_ERR_NULL);
-    CHECK_EQ(vf_point_table(&tf, 64, slab, NULL, out), VF_ERR_NULL);
-    CHECK_EQ(vf_point_table(&tf, 64, slab, &arena, NULL), VF_ERR_NULL);
-    CHECK_EQ(vf_preint_table(NULL, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_NULL);
-    CHECK_EQ(vf_preint_table(&tf, 64, slab, VF_BUILDER_INCREMENTAL, NULL, out), VF_ERR_NULL);
-    CHECK_EQ(vf_preint_table(&tf, 64, slab, VF_BUILDER_INCREMENTAL, &arena, NULL), VF_ERR_NULL);
+    CHECK_EQ(vf_table_point(NULL, 64, slab, &arena, out), VF_ERR_NULL);
+    CHECK_EQ(vf_table_point(&tf, 64, slab, NULL, out), VF_ERR_NULL);
+    CHECK_EQ(vf_table_point(&tf, 64, slab, &arena, NULL), VF_ERR_NULL);
+    CHECK_EQ(vf_table_preint(NULL, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_NULL);
+    CHECK_EQ(vf_table_preint(&tf, 64, slab, VF_BUILDER_INCREMENTAL, NULL, out), VF_ERR_NULL);
+    CHECK_EQ(vf_table_preint(&tf, 64, slab, VF_BUILDER_INCREMENTAL, &arena, NULL), VF_ERR_NULL);
     const uint32_t bad_n[] = {0, 1, VF_MAX_TABLE + 1, UINT32_MAX};
     for (int i = 0; i < 4; i++) {
-        CHECK_EQ(vf_point_table(&tf, bad_n[i], slab, &arena, out), VF_ERR_ARG);
-        CHECK_EQ(vf_preint_table(&tf, bad_n[i], slab, VF_BUILDER_BRUTEFORCE, &arena, out), VF_ERR_ARG);
+        CHECK_EQ(vf_table_point(&tf, bad_n[i], slab, &arena, out), VF_ERR_ARG);
+        CHECK_EQ(vf_table_preint(&tf, bad_n[i], slab, VF_BUILDER_BRUTEFORCE, &arena, out), VF_ERR_ARG);
         CHECK_EQ(vf_table_scratch_bytes(bad_n[i]), 0);
     }
     const uint32_t bad_slab[] = {0, (UINT32_C(128) << 16) + 1, UINT32_MAX};
     for (int i = 0; i < 3; i++)
-        CHECK_EQ(vf_preint_table(&tf, 64, bad_slab[i], VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_ARG);
-    CHECK_EQ(vf_preint_table(&tf, 64, slab, VF_BUILDER_COUNT, &arena, out), VF_ERR_ARG);
-    CHECK_EQ(vf_preint_table(&tf, 64, slab, (vf_builder_t)-1, &arena, out), VF_ERR_ARG);
+        CHECK_EQ(vf_table_preint(&tf, 64, bad_slab[i], VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_ARG);
+    CHECK_EQ(vf_table_preint(&tf, 64, slab, VF_BUILDER_COUNT, &arena, out), VF_ERR_ARG);
+    CHECK_EQ(vf_table_preint(&tf, 64, slab, (vf_builder_t)-1, &arena, out), VF_ERR_ARG);
     vf_tf_point_t down[2] = {{300, 0, 0, 0, 0}, {200, 0, 0, 0, 0}};
     vf_tf_t bad = {down, 2};
-    CHECK_EQ(vf_preint_table(&bad, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_TF);
+    CHECK_EQ(vf_table_preint(&bad, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_TF);
     bad.count = 0;
-    CHECK_EQ(vf_point_table(&bad, 64, slab, &arena, out), VF_ERR_TF);
+    CHECK_EQ(vf_table_point(&bad, 64, slab, &arena, out), VF_ERR_TF);
     CHECK_EQ(arena.used, 0);
     /* scratch: vf_table_scratch_bytes is enough even on a misaligned buffer (it counts the alignment); half of it
      * is refused */
@@ -899,11 +899,11 @@ static void table_api_arguments(void)
     CHECK(need > 0);
     vf_arena_init(&arena, buf + 1, need);
     size_t start = arena.used; /* the bytes skipped to align */
-    CHECK_EQ(vf_preint_table(&tf, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_OK);
+    CHECK_EQ(vf_table_preint(&tf, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_OK);
     CHECK_EQ(arena.used, start); /* the scratch is given back */
     vf_arena_init(&arena, buf, need / 2);
-    CHECK_EQ(vf_preint_table(&tf, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_NOMEM);
-    CHECK_EQ(vf_point_table(&tf, 64, slab, &arena, out), VF_ERR_NOMEM);
+    CHECK_EQ(vf_table_preint(&tf, 64, slab, VF_BUILDER_INCREMENTAL, &arena, out), VF_ERR_NOMEM);
+    CHECK_EQ(vf_table_point(&tf, 64, slab, &arena, out), VF_ERR_NOMEM);
     CHECK_EQ(arena.used, 0);
 }
 

@@ -13,7 +13,9 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "frame.h"
 #include "volfix.h"
+#include "volfix_internal.h"
 
 #define NX 9
 #define NY 7
@@ -89,7 +91,7 @@ static void render_reference(vf_mode_t mode, const vf_tf_t *tf, const vf_view_t 
     vf_renderer_t *r = NULL;
     vf_image_t im = {out, 32, 32, 96, VF_FORMAT_RGB888};
     if (vf_renderer_create(&r, &p, &volume, &arena) != VF_OK || vf_renderer_set_window(r, (vf_window_t){0, 255}) ||
-        vf_renderer_set_tf(r, tf) || vf_render(r, view, &im, scratch, sizeof scratch))
+        vf_renderer_set_tf(r, tf) || vf_renderer_draw(r, view, &im, scratch, sizeof scratch))
         check_fail(__FILE__, __LINE__, "reference render failed");
 }
 
@@ -104,7 +106,7 @@ static void create_fault_loop(void)
         for (uint32_t fail = 1; fail < 100 && !succeeded; fail++) {
             vf_arena_t arena;
             vf_arena_init(&arena, arena_buf, sizeof arena_buf);
-            arena.fail_after = fail;
+            vfi_arena_fail_after(&arena, fail);
             vf_renderer_t *r = (vf_renderer_t *)&arena; /* must come back NULL on failure */
             vf_status_t s = vf_renderer_create(&r, &p, &volume, &arena);
             if (s == VF_OK) {
@@ -112,11 +114,11 @@ static void create_fault_loop(void)
                 succeeded = 1;
                 CHECK(fail >= 5); /* at least renderer, three slices and the tables */
                 /* and it works */
-                arena.fail_after = 0;
+                vfi_arena_fail_after(&arena, 0);
                 CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
                 CHECK_EQ(vf_renderer_set_tf(r, &dense), VF_OK);
                 vf_image_t im = {pixels[0], 32, 32, 96, VF_FORMAT_RGB888};
-                CHECK_EQ(vf_render(r, &view_z, &im, scratch, sizeof scratch), VF_OK);
+                CHECK_EQ(vf_renderer_draw(r, &view_z, &im, scratch, sizeof scratch), VF_OK);
                 render_reference(p.mode, &dense, &view_z, pixels[1]);
                 CHECK(memcmp(pixels[0], pixels[1], sizeof pixels[0]) == 0);
             } else {
@@ -178,16 +180,16 @@ typedef struct frame_job {
 static int job_composite(void *arg)
 {
     frame_job_t *job = arg;
-    const vf_factor_t *f = vf_render_factor(job->r);
+    const vf_factor_t *f = vf_renderer_factor(job->r);
     uint32_t rows = f ? f->int_h : 1;
-    return vf_composite_band(job->r, 0, rows, scratch, sizeof scratch);
+    return vf_renderer_composite_band(job->r, 0, rows, scratch, sizeof scratch);
 }
 
 static int job_render(void *arg)
 {
     frame_job_t *job = arg;
     vf_image_t im = {pixels[0], 32, 32, 96, VF_FORMAT_RGB888};
-    return vf_render(job->r, &view_x, &im, scratch, sizeof scratch);
+    return vf_renderer_draw(job->r, &view_x, &im, scratch, sizeof scratch);
 }
 
 /* Allocation-failure points inside vf_renderer_set_tf (the run lists), for both principal axes of the frame
@@ -207,8 +209,8 @@ static void set_tf_fault_loop(void)
                 CHECK_EQ(vf_renderer_create(&r, &p, &volume, &arena), VF_OK);
                 CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
                 CHECK_EQ(vf_renderer_set_tf(r, &sparse), VF_OK);
-                CHECK_EQ(vf_render_begin(r, view, 32, 32), VF_OK); /* a frame in progress */
-                arena.fail_after = arena.allocs + extra;
+                CHECK_EQ(begin_frame(r, view, 32, 32, 0, false), VF_OK); /* a frame in progress */
+                vfi_arena_fail_after(&arena, arena.allocs + extra);
                 vf_status_t s = vf_renderer_set_tf(r, &dense);
                 if (s == VF_OK) {
                     succeeded = 1;
@@ -222,7 +224,7 @@ static void set_tf_fault_loop(void)
                           vf_mode_name(p.mode), v ? "x" : "z", extra, rc, rc < 0 ? " (crashed)" : "");
                 /* ... and so do the bands of the frame begun before the failure (CORE BUG if they composite
                  * with the half-built run lists: vf_renderer_set_tf does not end the frame) */
-                CHECK_EQ(vf_render_begin(r, view, 32, 32), VF_ERR_STATE);
+                CHECK_EQ(begin_frame(r, view, 32, 32, 0, false), VF_ERR_STATE);
                 rc = in_child(job_composite, &job);
                 CHECK_MSG(rc == VF_ERR_STATE, "composite after a failed begin gave %d", rc);
             }
@@ -233,7 +235,7 @@ static void set_tf_fault_loop(void)
 /* The same, with the band of the frame in progress composited right after the failure (no new begin). Every
  * failure point of the run lists, both modes, a frame along z and one along x; the outcomes are collected so
  * that one message lists them all. CORE BUG (renderer.c, vf_renderer_set_tf / encode_runs): the failure leaves
- * have_frame true, so vf_composite_band goes on with run lists that are half-built (a NULL pairs array, or
+ * have_frame true, so vf_renderer_composite_band goes on with run lists that are half-built (a NULL pairs array, or
  * row indices over memory the rewind gave back): VF_OK with a wrong picture, or a crash. */
 static void set_tf_failure_inside_frame(void)
 {
@@ -251,8 +253,8 @@ static void set_tf_failure_inside_frame(void)
                 CHECK_EQ(vf_renderer_create(&r, &p, &volume, &arena), VF_OK);
                 CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
                 CHECK_EQ(vf_renderer_set_tf(r, &sparse), VF_OK);
-                CHECK_EQ(vf_render_begin(r, view, 32, 32), VF_OK);
-                arena.fail_after = arena.allocs + extra;
+                CHECK_EQ(begin_frame(r, view, 32, 32, 0, false), VF_OK);
+                vfi_arena_fail_after(&arena, arena.allocs + extra);
                 if (vf_renderer_set_tf(r, &dense) == VF_OK)
                     break;
                 frame_job_t job = {r};
@@ -266,7 +268,7 @@ static void set_tf_failure_inside_frame(void)
                 }
             }
         }
-    CHECK_MSG(bad == 0, "vf_composite_band after vf_renderer_set_tf failed inside a frame, expected VF_ERR_STATE:%s",
+    CHECK_MSG(bad == 0, "vf_renderer_composite_band after vf_renderer_set_tf failed inside a frame, expected VF_ERR_STATE:%s",
               report);
 }
 
@@ -311,7 +313,7 @@ static void set_tf_short_arena(void)
             s = vf_renderer_set_tf(r, &sparse);
             if (s == VF_OK) {
                 vf_image_t im = {pixels[0], 32, 32, 96, VF_FORMAT_RGB888};
-                CHECK_EQ(vf_render(r, &view_z, &im, scratch, sizeof scratch), VF_OK);
+                CHECK_EQ(vf_renderer_draw(r, &view_z, &im, scratch, sizeof scratch), VF_OK);
                 render_reference(p.mode, &sparse, &view_z, pixels[1]);
                 CHECK(memcmp(pixels[0], pixels[1], sizeof pixels[0]) == 0);
             } else {
@@ -321,7 +323,7 @@ static void set_tf_short_arena(void)
             arena.size = needed;
             CHECK_EQ(vf_renderer_set_tf(r, &dense), VF_OK);
             vf_image_t im = {pixels[0], 32, 32, 96, VF_FORMAT_RGB888};
-            CHECK_EQ(vf_render(r, &view_x, &im, scratch, sizeof scratch), VF_OK);
+            CHECK_EQ(vf_renderer_draw(r, &view_x, &im, scratch, sizeof scratch), VF_OK);
             render_reference(p.mode, &dense, &view_x, pixels[1]);
             CHECK(memcmp(pixels[0], pixels[1], sizeof pixels[0]) == 0);
         }
@@ -347,7 +349,7 @@ static void set_window_short_arena(void)
     arena.size = vf_renderer_needed_bytes(r);
     CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
     vf_image_t im = {pixels[0], 32, 32, 96, VF_FORMAT_RGB888};
-    CHECK_EQ(vf_render(r, &view_x, &im, scratch, sizeof scratch), VF_OK);
+    CHECK_EQ(vf_renderer_draw(r, &view_x, &im, scratch, sizeof scratch), VF_OK);
     render_reference(p.mode, &dense, &view_x, pixels[1]);
     CHECK(memcmp(pixels[0], pixels[1], sizeof pixels[0]) == 0);
 }

@@ -16,7 +16,9 @@
 #include <string.h>
 
 #include "check.h"
+#include "frame.h"
 #include "segment.h"
+#include "volfix_internal.h"
 
 static uint64_t rng_state = 0x082EFA98EC4E6C89u;
 static uint64_t rnd64(void)
@@ -158,7 +160,7 @@ static void segment1(const vf_renderer_t *r, const sample_t *front, const sample
  * pixel takes nothing more. */
 static void reference(const vf_renderer_t *r, const vf_volume_t *vol)
 {
-    const vf_factor_t *f = vf_render_factor(r);
+    const vf_factor_t *f = vf_renderer_factor(r);
     for (uint32_t v = 0; v < f->int_h; v++)
         for (uint32_t u = 0; u < f->int_w; u++) {
             uint16_t px[4] = {0, 0, 0, 0};
@@ -226,16 +228,16 @@ static void one_scene(const vf_params_t *params)
         }
         vf_image_t im = {pixels[0], 64, 48, 64 * 3, VF_FORMAT_RGB888};
         /* bands of a random height, in reverse order */
-        st = vf_render_begin(r, &view, im.width, im.height);
+        st = begin_frame(r, &view, im.width, im.height, 0, false);
         if (st != VF_OK) {
             check_fail(__FILE__, __LINE__, "begin: %s", vf_status_text(st));
             return;
         }
-        const vf_factor_t *f = vf_render_factor(r);
+        const vf_factor_t *f = vf_renderer_factor(r);
         uint32_t rows = 1 + rnd(f->int_h);
         for (uint32_t top = (f->int_h - 1) / rows * rows;; top -= rows) {
             uint32_t bottom = top + rows < f->int_h ? top + rows : f->int_h;
-            st = vf_composite_band(r, top, bottom, scratch, vf_band_scratch_bytes(r, bottom - top));
+            st = vf_renderer_composite_band(r, top, bottom, scratch, vf_renderer_band_scratch_bytes(r, bottom - top));
             if (st != VF_OK) {
                 check_fail(__FILE__, __LINE__, "composite: %s", vf_status_text(st));
                 return;
@@ -244,7 +246,7 @@ static void one_scene(const vf_params_t *params)
                 break;
         }
         reference(r, &vol);
-        const uint16_t *inter = vf_render_intermediate(r);
+        const uint16_t *inter = vfi_renderer_intermediate(r);
         for (size_t e = 0; e < (size_t)f->int_w * f->int_h * 4; e++)
             if (inter[e] != ref_img[e]) {
                 size_t p = e / 4;
@@ -301,7 +303,7 @@ static void buffers_identical(void)
             CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
             CHECK_EQ(vf_renderer_set_tf(r, &tf), VF_OK);
             vf_image_t im = {pixels[b], 64, 48, 64 * 3, VF_FORMAT_RGB888};
-            CHECK_EQ(vf_render(r, &view, &im, scratch, sizeof scratch), VF_OK);
+            CHECK_EQ(vf_renderer_draw(r, &view, &im, scratch, sizeof scratch), VF_OK);
         }
         CHECK(memcmp(pixels[0], pixels[1], 64 * 48 * 3) == 0);
     }
@@ -331,8 +333,8 @@ static void lut_at_unit_slab(void)
             CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
             CHECK_EQ(vf_renderer_set_tf(r, &tf), VF_OK);
             vf_image_t im = {pixels[c], 64, 48, 64 * 3, VF_FORMAT_RGB888};
-            CHECK_EQ(vf_render(r, &view, &im, scratch, sizeof scratch), VF_OK);
-            CHECK_EQ(vf_render_factor(r)->slab_q16, 65536);
+            CHECK_EQ(vf_renderer_draw(r, &view, &im, scratch, sizeof scratch), VF_OK);
+            CHECK_EQ(vf_renderer_factor(r)->slab_q16, 65536);
         }
         for (size_t e = 0; e < 64 * 48 * 3; e++)
             CHECK_MSG(abs((int)pixels[0][e] - (int)pixels[1][e]) <= 2, "%s: pixel %zu channel %zu: rebuild %u, lut %u",

@@ -14,7 +14,9 @@
 #include <string.h>
 
 #include "check.h"
+#include "frame.h"
 #include "volfix.h"
+#include "volfix_internal.h"
 
 static uint64_t rng_state = 0xA4093822299F31D0u;
 static uint64_t rnd64(void)
@@ -152,9 +154,9 @@ static size_t direct_cap;
 /* Composite every intermediate pixel front to back, nothing skipped but terminated pixels. */
 static void direct_composite(const scene_t *s)
 {
-    const vf_factor_t *f = vf_render_factor(s->r);
+    const vf_factor_t *f = vf_renderer_factor(s->r);
     uint32_t n = s->params.table_size;
-    const uint16_t *table = s->params.mode == VF_MODE_POINT ? vf_render_point_table(s->r) : vf_render_preint_table(s->r);
+    const uint16_t *table = s->params.mode == VF_MODE_POINT ? vfi_renderer_point_table(s->r) : vfi_renderer_preint_table(s->r);
     size_t need = (size_t)f->int_w * f->int_h * 4;
     if (need > direct_cap) {
         free(direct_img);
@@ -208,7 +210,7 @@ static void direct_composite(const scene_t *s)
 /* Section 5 in double: the output level of channel c at final pixel (x, y). */
 static double warp_spec(const scene_t *s, const uint16_t *inter, uint32_t x, uint32_t y, int c)
 {
-    const vf_factor_t *f = vf_render_factor(s->r);
+    const vf_factor_t *f = vf_renderer_factor(s->r);
     const double q = 4294967296.0;
     double u = (f->u0_q32 + (double)x * f->du_dx_q32 + (double)y * f->du_dy_q32) / q;
     double v = (f->v0_q32 + (double)x * f->dv_dx_q32 + (double)y * f->dv_dy_q32) / q;
@@ -230,7 +232,7 @@ static double warp_spec(const scene_t *s, const uint16_t *inter, uint32_t x, uin
 
 static size_t scratch_for(const scene_t *s)
 {
-    return vf_band_scratch_bytes(s->r, s->vol.dims[0] + s->vol.dims[1] + s->vol.dims[2]);
+    return vf_renderer_band_scratch_bytes(s->r, s->vol.dims[0] + s->vol.dims[1] + s->vol.dims[2]);
 }
 
 /* view_kind: 0 random, 1 multiples of 90 degrees (no shear), 2 multiples of 45 degrees (shears of exactly 0
@@ -269,7 +271,7 @@ static void scene_once(vf_mode_t mode, uint32_t table_size, int view_kind, const
     }
     uint32_t w = 1 + rnd(60), h = 1 + rnd(60);
     vf_image_t im = image_of(0, w, h, VF_FORMAT_RGB888);
-    vf_status_t st = vf_render(s.r, &view, &im, scratch, scratch_for(&s));
+    vf_status_t st = vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s));
     if (st == VF_ERR_ARG) { /* refused only when a pixel would cover more than 256 voxels (factor.c) */
         double spmin = 1e300, d2 = 0;
         for (int a = 0; a < 3; a++)
@@ -285,8 +287,8 @@ static void scene_once(vf_mode_t mode, uint32_t table_size, int view_kind, const
         check_fail(__FILE__, __LINE__, "render: %s", vf_status_text(st));
         return;
     }
-    const vf_factor_t *f = vf_render_factor(s.r);
-    const uint16_t *inter = vf_render_intermediate(s.r);
+    const vf_factor_t *f = vf_renderer_factor(s.r);
+    const uint16_t *inter = vfi_renderer_intermediate(s.r);
     direct_composite(&s);
     for (size_t e = 0; e < (size_t)f->int_w * f->int_h * 4; e++) {
         if (inter[e] != direct_img[e]) {
@@ -363,15 +365,15 @@ static void constant_volume_closed_form(void)
         /* 4x4 output: scale = zoom * 4 / (3 sqrt 3) = 1 for zoom = 3 sqrt(3) / 4: a near-identity warp */
         vf_view_t view = {0, 0, 0, (uint32_t)lround(3 * sqrt(3) / 4 * 65536)};
         vf_image_t im = image_of(0, 4, 4, VF_FORMAT_RGB888);
-        CHECK_EQ(vf_render(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
-        const vf_factor_t *f = vf_render_factor(s.r);
+        CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+        const vf_factor_t *f = vf_renderer_factor(s.r);
         CHECK_EQ(f->k_axis, 2);
         CHECK_EQ(f->int_w, 4);
         CHECK_EQ(f->slab_q16, 65536);
         double tau = -log(1 - 19661 / 65535.0), segments = m ? 3 : 4;
         double A = 1 - exp(-tau * segments);
         const double col[3] = {52428 / 65535.0, 26214 / 65535.0, 13107 / 65535.0};
-        const uint16_t *inter = vf_render_intermediate(s.r);
+        const uint16_t *inter = vfi_renderer_intermediate(s.r);
         for (size_t px = 0; px < 16; px++) {
             /* Q1.15: the table entry within 1 LSB, then 3 or 4 rounded blends */
             CHECK_NEAR(inter[px * 4 + 3] / 32768.0, A, 6.0 / 32768);
@@ -398,8 +400,8 @@ static void early_termination(void)
     CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
     vf_view_t view = {0, 0, 0, 65536};
     vf_image_t im = image_of(0, 8, 8, VF_FORMAT_RGB888);
-    CHECK_EQ(vf_render(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
-    const uint16_t *inter = vf_render_intermediate(s.r);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+    const uint16_t *inter = vfi_renderer_intermediate(s.r);
     /* a = 1 - 0.39^1 per slice: after k slices 1 - 0.39^k; 1 - 2^-10 is passed at slice 8, then nothing more */
     for (size_t px = 0; px < 36; px++) {
         CHECK(inter[px * 4 + 3] >= 32768 - 32);
@@ -432,7 +434,7 @@ static void invisible_volume_background(void)
         CHECK(mem.runs <= 3 * (4 * (10 * 7 * 5) + 64)); /* the row index and one spare value per axis, no pairs */
         vf_view_t view = {1234, -5678, 999, 80000};
         vf_image_t im = image_of(0, 23, 17, VF_FORMAT_RGB888);
-        CHECK_EQ(vf_render(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+        CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
         for (size_t px = 0; px < 23 * 17; px++)
             for (int c = 0; c < 3; c++)
                 CHECK_EQ(pixels[0][px * 3 + c], lround(bgs[b][c] * 255.0 / 65535));
@@ -454,8 +456,8 @@ static void point_vs_preint1_constant_tf(void)
         CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
         vf_view_t view = {0, 0, 0, 65536};
         vf_image_t im = image_of(0, 16, 16, VF_FORMAT_RGB888);
-        CHECK_EQ(vf_render(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
-        const uint16_t *inter = vf_render_intermediate(s.r);
+        CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+        const uint16_t *inter = vfi_renderer_intermediate(s.r);
         double tau = -log(1 - 9000 / 65535.0);
         double want = 1 - exp(-tau * (m ? 5 : 6));
         for (size_t px = 0; px < 64; px++)
@@ -484,31 +486,31 @@ static void bands_are_deterministic(void)
         vf_view_t view = {(int32_t)rnd(65536), (int32_t)rnd(65536), (int32_t)rnd(65536), 65536};
         uint32_t w = 40, h = 33;
         vf_image_t ref = image_of(0, w, h, VF_FORMAT_RGB888);
-        CHECK_EQ(vf_render(s.r, &view, &ref, scratch, scratch_for(&s)), VF_OK);
+        CHECK_EQ(vf_renderer_draw(s.r, &view, &ref, scratch, scratch_for(&s)), VF_OK);
         static uint16_t inter_ref[(2 * MAXD) * (2 * MAXD) * 4];
-        const vf_factor_t *f = vf_render_factor(s.r);
+        const vf_factor_t *f = vf_renderer_factor(s.r);
         size_t inter_n = (size_t)f->int_w * f->int_h * 4;
-        memcpy(inter_ref, vf_render_intermediate(s.r), inter_n * sizeof(uint16_t));
+        memcpy(inter_ref, vfi_renderer_intermediate(s.r), inter_n * sizeof(uint16_t));
         /* the same frame again */
         vf_image_t again = image_of(1, w, h, VF_FORMAT_RGB888);
-        CHECK_EQ(vf_render(s.r, &view, &again, scratch, scratch_for(&s)), VF_OK);
+        CHECK_EQ(vf_renderer_draw(s.r, &view, &again, scratch, scratch_for(&s)), VF_OK);
         CHECK(memcmp(pixels[0], pixels[1], w * h * 3) == 0);
         /* in bands of 1..7 rows, composited in reverse order, each band with its own exactly-sized scratch */
         for (uint32_t rows = 1; rows <= 7; rows++) {
             memset(pixels[1], 0x5A, w * h * 3);
-            CHECK_EQ(vf_render_begin(s.r, &view, w, h), VF_OK);
-            uint32_t ih = vf_render_factor(s.r)->int_h;
+            CHECK_EQ(begin_frame(s.r, &view, w, h, 0, false), VF_OK);
+            uint32_t ih = vf_renderer_factor(s.r)->int_h;
             for (uint32_t top = (ih - 1) / rows * rows;; top -= rows) {
                 uint32_t bottom = top + rows < ih ? top + rows : ih;
-                size_t bytes = vf_band_scratch_bytes(s.r, bottom - top);
+                size_t bytes = vf_renderer_band_scratch_bytes(s.r, bottom - top);
                 /* misaligned scratch on purpose: the core aligns it */
-                CHECK_EQ(vf_composite_band(s.r, top, bottom, scratch + 1 + rows, bytes), VF_OK);
+                CHECK_EQ(vf_renderer_composite_band(s.r, top, bottom, scratch + 1 + rows, bytes), VF_OK);
                 if (top == 0)
                     break;
             }
-            CHECK(memcmp(inter_ref, vf_render_intermediate(s.r), inter_n * sizeof(uint16_t)) == 0);
+            CHECK(memcmp(inter_ref, vfi_renderer_intermediate(s.r), inter_n * sizeof(uint16_t)) == 0);
             for (uint32_t y = 0; y < h; y += rows)
-                CHECK_EQ(vf_warp_band(s.r, &again, y, y + rows < h ? y + rows : h), VF_OK);
+                CHECK_EQ(vf_renderer_warp_band(s.r, &again, y, y + rows < h ? y + rows : h), VF_OK);
             CHECK_MSG(memcmp(pixels[0], pixels[1], w * h * 3) == 0, "bands of %u rows differ", rows);
         }
     }
@@ -546,7 +548,7 @@ static void state_follows_changes(void)
                 CHECK_EQ(vf_renderer_set_window(s.r, win), VF_OK);
             }
             vf_image_t im = image_of(0, 40, 40, VF_FORMAT_RGB888);
-            CHECK_EQ(vf_render(s.r, view, &im, scratch, scratch_for(&s)), VF_OK);
+            CHECK_EQ(vf_renderer_draw(s.r, view, &im, scratch, scratch_for(&s)), VF_OK);
             vf_params_t p = s.params;
             vf_arena_t arena;
             vf_arena_init(&arena, fresh_buf, sizeof fresh_buf);
@@ -555,7 +557,7 @@ static void state_follows_changes(void)
             CHECK_EQ(vf_renderer_set_window(r, win), VF_OK);
             CHECK_EQ(vf_renderer_set_tf(r, tf), VF_OK);
             vf_image_t fi = {fresh_img, 40, 40, 120, VF_FORMAT_RGB888};
-            CHECK_EQ(vf_render(r, view, &fi, scratch, scratch_for(&s)), VF_OK);
+            CHECK_EQ(vf_renderer_draw(r, view, &fi, scratch, scratch_for(&s)), VF_OK);
             CHECK_MSG(memcmp(pixels[0], fresh_img, sizeof fresh_img) == 0, "%s step %d differs from a fresh renderer",
                       vf_mode_name(m ? VF_MODE_PREINT1 : VF_MODE_POINT), step);
         }
@@ -585,10 +587,10 @@ static void output_formats(void)
         vf_image_t x888 = image_of(1, w, h, VF_FORMAT_XRGB8888);
         vf_image_t r565 = image_of(2, w, h, VF_FORMAT_RGB565);
         r565.stride = w * 2 + 6; /* a padded stride */
-        CHECK_EQ(vf_render(s.r, &view, &rgb, scratch, scratch_for(&s)), VF_OK);
-        CHECK_EQ(vf_warp_band(s.r, &x888, 0, h), VF_OK);
+        CHECK_EQ(vf_renderer_draw(s.r, &view, &rgb, scratch, scratch_for(&s)), VF_OK);
+        CHECK_EQ(vf_renderer_warp_band(s.r, &x888, 0, h), VF_OK);
         memset(pixels[2], 0xEE, sizeof pixels[2]);
-        CHECK_EQ(vf_warp_band(s.r, &r565, 0, h), VF_OK);
+        CHECK_EQ(vf_renderer_warp_band(s.r, &r565, 0, h), VF_OK);
         for (uint32_t y = 0; y < h; y++)
             for (uint32_t x = 0; x < w; x++) {
                 const uint8_t *c8 = pixels[0] + ((size_t)y * w + x) * 3;
@@ -627,10 +629,10 @@ static void identity_warp(void)
     CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
     vf_view_t view = {0, 0, 0, 65536};
     vf_image_t im = image_of(0, 21, 21, VF_FORMAT_RGB888);
-    CHECK_EQ(vf_render(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
-    const vf_factor_t *f = vf_render_factor(s.r);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+    const vf_factor_t *f = vf_renderer_factor(s.r);
     CHECK(f->du_dx_q32 == (INT64_C(1) << 32) && f->u0_q32 == -(INT64_C(3) << 32));
-    const uint16_t *inter = vf_render_intermediate(s.r);
+    const uint16_t *inter = vfi_renderer_intermediate(s.r);
     for (int y = 0; y < 21; y++)
         for (int x = 0; x < 21; x++) {
             int u = x - 3, v = y - 3;
@@ -669,12 +671,12 @@ static void shear_beyond_one_skips_visible(void)
     CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
     vf_view_t view = {4593, -7670, 0, 65536};
     vf_image_t im = image_of(0, 32, 32, VF_FORMAT_RGB888);
-    CHECK_EQ(vf_render(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
-    const vf_factor_t *f = vf_render_factor(s.r);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+    const vf_factor_t *f = vf_renderer_factor(s.r);
     /* the premise with the core of this writing: k = y, si = -1.0000009, offsets 9 + 2^-16 and 8 for slices 0
      * and 1; a core that avoids shears beyond 1 passes by matching section 4 all the same */
     direct_composite(&s);
-    const uint16_t *inter = vf_render_intermediate(s.r);
+    const uint16_t *inter = vfi_renderer_intermediate(s.r);
     for (uint32_t v = 0; v < f->int_h; v++)
         for (uint32_t u = 0; u < f->int_w; u++) {
             const uint16_t *got = inter + ((size_t)v * f->int_w + u) * 4, *want = direct_img + ((size_t)v * f->int_w + u) * 4;

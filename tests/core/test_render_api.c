@@ -9,7 +9,9 @@
 #include <string.h>
 
 #include "check.h"
+#include "frame.h"
 #include "volfix.h"
+#include "volfix_internal.h"
 
 static uint64_t rng_state = 0xA4093822299F31D0u;
 static uint64_t rnd64(void)
@@ -94,7 +96,7 @@ static vf_image_t image_of(int n, uint32_t w, uint32_t h, vf_format_t format)
 
 static size_t scratch_for(const scene_t *s)
 {
-    return vf_band_scratch_bytes(s->r, s->vol.dims[0] + s->vol.dims[1] + s->vol.dims[2]);
+    return vf_renderer_band_scratch_bytes(s->r, s->vol.dims[0] + s->vol.dims[1] + s->vol.dims[2]);
 }
 
 /* ---- state machine and arguments ------------------------------------------------------------------- */
@@ -109,88 +111,88 @@ static void state_machine(void)
     vf_image_t im = image_of(0, 20, 10, VF_FORMAT_RGB888);
     size_t bytes = scratch_for(&s);
     /* nothing before a window and a transfer function */
-    CHECK_EQ(vf_render(s.r, &view, &im, scratch, bytes), VF_ERR_STATE);
-    CHECK_EQ(vf_render_begin(s.r, &view, 20, 10), VF_ERR_STATE);
-    CHECK_EQ(vf_composite_band(s.r, 0, 1, scratch, bytes), VF_ERR_STATE);
-    CHECK_EQ(vf_warp_band(s.r, &im, 0, 1), VF_ERR_STATE);
-    CHECK(vf_render_factor(s.r) == NULL);
-    CHECK(vf_render_intermediate(s.r) == NULL);
-    CHECK(vf_render_preint_table(s.r) == NULL);
-    CHECK(vf_render_point_table(s.r) == NULL);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, bytes), VF_ERR_STATE);
+    CHECK_EQ(begin_frame(s.r, &view, 20, 10, 0, false), VF_ERR_STATE);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 0, 1, scratch, bytes), VF_ERR_STATE);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &im, 0, 1), VF_ERR_STATE);
+    CHECK(vf_renderer_factor(s.r) == NULL);
+    CHECK(vfi_renderer_intermediate(s.r) == NULL);
+    CHECK(vfi_renderer_preint_table(s.r) == NULL);
+    CHECK(vfi_renderer_point_table(s.r) == NULL);
     CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-    CHECK_EQ(vf_render(s.r, &view, &im, scratch, bytes), VF_ERR_STATE); /* window only */
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, bytes), VF_ERR_STATE); /* window only */
     vf_tf_t tf = random_tf();
     CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
-    CHECK_EQ(vf_render(s.r, &view, &im, scratch, bytes), VF_OK);
-    CHECK(vf_render_factor(s.r) != NULL);
-    CHECK(vf_render_preint_table(s.r) != NULL);
-    CHECK(vf_render_point_table(s.r) == NULL); /* preint1 builds no separate point table */
-    const vf_factor_t *f = vf_render_factor(s.r);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, bytes), VF_OK);
+    CHECK(vf_renderer_factor(s.r) != NULL);
+    CHECK(vfi_renderer_preint_table(s.r) != NULL);
+    CHECK(vfi_renderer_point_table(s.r) == NULL); /* preint1 builds no separate point table */
+    const vf_factor_t *f = vf_renderer_factor(s.r);
     uint32_t ih = f->int_h;
     /* bands out of range */
-    CHECK_EQ(vf_composite_band(s.r, 0, 0, scratch, bytes), VF_ERR_ARG);
-    CHECK_EQ(vf_composite_band(s.r, 3, 2, scratch, bytes), VF_ERR_ARG);
-    CHECK_EQ(vf_composite_band(s.r, 0, ih + 1, scratch, bytes), VF_ERR_ARG);
-    CHECK_EQ(vf_composite_band(s.r, ih, ih + 1, scratch, bytes), VF_ERR_ARG);
-    CHECK_EQ(vf_composite_band(s.r, 0, ih, scratch, bytes), VF_OK);
-    CHECK_EQ(vf_composite_band(s.r, ih - 1, ih, scratch, bytes), VF_OK);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 0, 0, scratch, bytes), VF_ERR_ARG);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 3, 2, scratch, bytes), VF_ERR_ARG);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 0, ih + 1, scratch, bytes), VF_ERR_ARG);
+    CHECK_EQ(vf_renderer_composite_band(s.r, ih, ih + 1, scratch, bytes), VF_ERR_ARG);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 0, ih, scratch, bytes), VF_OK);
+    CHECK_EQ(vf_renderer_composite_band(s.r, ih - 1, ih, scratch, bytes), VF_OK);
     /* scratch too small: one byte short of what a band of the given rows needs */
-    CHECK_EQ(vf_composite_band(s.r, 0, ih, scratch, vf_band_scratch_bytes(s.r, ih) - 1), VF_ERR_NOMEM);
-    CHECK_EQ(vf_composite_band(s.r, 0, 1, scratch, vf_band_scratch_bytes(s.r, 1) - 1), VF_ERR_NOMEM);
-    CHECK_EQ(vf_composite_band(s.r, 0, 1, scratch, 0), VF_ERR_NOMEM);
-    CHECK_EQ(vf_render(s.r, &view, &im, scratch, 10), VF_ERR_NOMEM);
-    CHECK(vf_band_scratch_bytes(s.r, 2) > vf_band_scratch_bytes(s.r, 1));
-    CHECK_EQ(vf_band_scratch_bytes(NULL, 5), 0);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 0, ih, scratch, vf_renderer_band_scratch_bytes(s.r, ih) - 1), VF_ERR_NOMEM);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 0, 1, scratch, vf_renderer_band_scratch_bytes(s.r, 1) - 1), VF_ERR_NOMEM);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 0, 1, scratch, 0), VF_ERR_NOMEM);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, 10), VF_ERR_NOMEM);
+    CHECK(vf_renderer_band_scratch_bytes(s.r, 2) > vf_renderer_band_scratch_bytes(s.r, 1));
+    CHECK_EQ(vf_renderer_band_scratch_bytes(NULL, 5), 0);
     /* warp: the image must match the size given to begin, have a stride and a known format */
-    CHECK_EQ(vf_render_begin(s.r, &view, 20, 10), VF_OK);
-    CHECK_EQ(vf_composite_band(s.r, 0, vf_render_factor(s.r)->int_h, scratch, bytes), VF_OK);
+    CHECK_EQ(begin_frame(s.r, &view, 20, 10, 0, false), VF_OK);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 0, vf_renderer_factor(s.r)->int_h, scratch, bytes), VF_OK);
     vf_image_t bad = im;
     bad.width = 21;
-    CHECK_EQ(vf_warp_band(s.r, &bad, 0, 10), VF_ERR_IMAGE);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &bad, 0, 10), VF_ERR_IMAGE);
     bad = im;
     bad.height = 9;
-    CHECK_EQ(vf_warp_band(s.r, &bad, 0, 9), VF_ERR_IMAGE);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &bad, 0, 9), VF_ERR_IMAGE);
     bad = im;
     bad.stride = 59;
-    CHECK_EQ(vf_warp_band(s.r, &bad, 0, 10), VF_ERR_IMAGE);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &bad, 0, 10), VF_ERR_IMAGE);
     bad = im;
     bad.format = VF_FORMAT_COUNT;
-    CHECK_EQ(vf_warp_band(s.r, &bad, 0, 10), VF_ERR_IMAGE);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &bad, 0, 10), VF_ERR_IMAGE);
     bad.format = (vf_format_t)-1;
-    CHECK_EQ(vf_warp_band(s.r, &bad, 0, 10), VF_ERR_IMAGE);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &bad, 0, 10), VF_ERR_IMAGE);
     bad = im;
     bad.pixels = NULL;
-    CHECK_EQ(vf_warp_band(s.r, &bad, 0, 10), VF_ERR_NULL);
-    CHECK_EQ(vf_warp_band(s.r, &im, 0, 0), VF_ERR_ARG);
-    CHECK_EQ(vf_warp_band(s.r, &im, 5, 4), VF_ERR_ARG);
-    CHECK_EQ(vf_warp_band(s.r, &im, 0, 11), VF_ERR_ARG);
-    CHECK_EQ(vf_warp_band(s.r, &im, 9, 10), VF_OK);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &bad, 0, 10), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &im, 0, 0), VF_ERR_ARG);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &im, 5, 4), VF_ERR_ARG);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &im, 0, 11), VF_ERR_ARG);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &im, 9, 10), VF_OK);
     bad = im;
     bad.width = 0;
-    CHECK_EQ(vf_render(s.r, &view, &bad, scratch, bytes), VF_ERR_IMAGE);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &bad, scratch, bytes), VF_ERR_IMAGE);
     /* a failed begin ends the frame: no compositing with the previous factorisation */
     vf_view_t zoomless = view;
     zoomless.zoom_q16 = 0;
-    CHECK_EQ(vf_render_begin(s.r, &zoomless, 20, 10), VF_ERR_ARG);
-    CHECK_EQ(vf_composite_band(s.r, 0, 1, scratch, bytes), VF_ERR_STATE);
-    CHECK_EQ(vf_warp_band(s.r, &im, 0, 1), VF_ERR_STATE);
-    CHECK(vf_render_factor(s.r) == NULL);
+    CHECK_EQ(begin_frame(s.r, &zoomless, 20, 10, 0, false), VF_ERR_ARG);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 0, 1, scratch, bytes), VF_ERR_STATE);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &im, 0, 1), VF_ERR_STATE);
+    CHECK(vf_renderer_factor(s.r) == NULL);
     /* NULL pointers */
-    CHECK_EQ(vf_render(NULL, &view, &im, scratch, bytes), VF_ERR_NULL);
-    CHECK_EQ(vf_render(s.r, NULL, &im, scratch, bytes), VF_ERR_NULL);
-    CHECK_EQ(vf_render(s.r, &view, NULL, scratch, bytes), VF_ERR_NULL);
-    CHECK_EQ(vf_render(s.r, &view, &im, NULL, bytes), VF_ERR_NULL);
-    CHECK_EQ(vf_render_begin(NULL, &view, 20, 10), VF_ERR_NULL);
-    CHECK_EQ(vf_render_begin(s.r, NULL, 20, 10), VF_ERR_NULL);
-    CHECK_EQ(vf_composite_band(NULL, 0, 1, scratch, bytes), VF_ERR_NULL);
-    CHECK_EQ(vf_warp_band(NULL, &im, 0, 1), VF_ERR_NULL);
-    CHECK_EQ(vf_warp_band(s.r, NULL, 0, 1), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_draw(NULL, &view, &im, scratch, bytes), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_draw(s.r, NULL, &im, scratch, bytes), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, NULL, scratch, bytes), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, NULL, bytes), VF_ERR_NULL);
+    CHECK_EQ(begin_frame(NULL, &view, 20, 10, 0, false), VF_ERR_NULL);
+    CHECK_EQ(begin_frame(s.r, NULL, 20, 10, 0, false), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_composite_band(NULL, 0, 1, scratch, bytes), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_warp_band(NULL, &im, 0, 1), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_warp_band(s.r, NULL, 0, 1), VF_ERR_NULL);
     CHECK_EQ(vf_renderer_set_tf(NULL, &tf), VF_ERR_NULL);
     CHECK_EQ(vf_renderer_set_tf(s.r, NULL), VF_ERR_NULL);
-    CHECK(vf_render_factor(NULL) == NULL);
-    CHECK(vf_render_intermediate(NULL) == NULL);
-    CHECK(vf_render_point_table(NULL) == NULL);
-    CHECK(vf_render_preint_table(NULL) == NULL);
+    CHECK(vf_renderer_factor(NULL) == NULL);
+    CHECK(vfi_renderer_intermediate(NULL) == NULL);
+    CHECK(vfi_renderer_point_table(NULL) == NULL);
+    CHECK(vfi_renderer_preint_table(NULL) == NULL);
     CHECK(vf_renderer_params(NULL) == NULL);
     CHECK(vf_renderer_params(s.r) != NULL && vf_renderer_params(s.r)->table_size == 64);
     CHECK_EQ(vf_renderer_needed_bytes(NULL), 0);
@@ -200,7 +202,7 @@ static void state_machine(void)
     vf_renderer_memory(s.r, NULL);
     vf_params_default(NULL);
     /* after all the errors a frame still renders */
-    CHECK_EQ(vf_render(s.r, &view, &im, scratch, bytes), VF_OK);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, bytes), VF_OK);
 }
 
 /* A bad transfer function leaves the previous one in force: the next frame is the same picture. */
@@ -216,7 +218,7 @@ static void bad_tf_keeps_picture(void)
     CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
     vf_view_t view = {5000, 3000, 0, 65536};
     vf_image_t a = image_of(0, 25, 25, VF_FORMAT_RGB888), b = image_of(1, 25, 25, VF_FORMAT_RGB888);
-    CHECK_EQ(vf_render(s.r, &view, &a, scratch, scratch_for(&s)), VF_OK);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &a, scratch, scratch_for(&s)), VF_OK);
     vf_tf_point_t dec[2] = {{300, 1, 1, 1, 65535}, {200, 1, 1, 1, 65535}};
     vf_tf_t bad = {dec, 2};
     CHECK_EQ(vf_renderer_set_tf(s.r, &bad), VF_ERR_TF);
@@ -225,7 +227,7 @@ static void bad_tf_keeps_picture(void)
     dec[1].scalar_q8 = 65281;
     bad.count = 2;
     CHECK_EQ(vf_renderer_set_tf(s.r, &bad), VF_ERR_TF);
-    CHECK_EQ(vf_render(s.r, &view, &b, scratch, scratch_for(&s)), VF_OK);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &b, scratch, scratch_for(&s)), VF_OK);
     CHECK(memcmp(pixels[0], pixels[1], 25 * 25 * 3) == 0);
 }
 
@@ -246,19 +248,19 @@ static void tf_change_inside_frame(void)
     CHECK_EQ(vf_renderer_set_tf(s.r, &tf2), VF_OK);
     vf_view_t view = {5000, 3000, 0, 65536};
     vf_image_t want = image_of(0, 25, 25, VF_FORMAT_RGB888), got = image_of(1, 25, 25, VF_FORMAT_RGB888);
-    CHECK_EQ(vf_render(s.r, &view, &want, scratch, scratch_for(&s)), VF_OK); /* the picture of tf2 */
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &want, scratch, scratch_for(&s)), VF_OK); /* the picture of tf2 */
     CHECK_EQ(vf_renderer_set_tf(s.r, &tf1), VF_OK);
-    CHECK_EQ(vf_render_begin(s.r, &view, 25, 25), VF_OK); /* tables of tf1 */
-    uint32_t rows = vf_render_factor(s.r)->int_h;
+    CHECK_EQ(begin_frame(s.r, &view, 25, 25, 0, false), VF_OK); /* tables of tf1 */
+    uint32_t rows = vf_renderer_factor(s.r)->int_h;
     CHECK_EQ(vf_renderer_set_tf(s.r, &tf2), VF_OK);         /* runs of tf2 */
-    CHECK(vf_render_factor(s.r) == NULL);                   /* the frame is over */
-    vf_status_t st = vf_composite_band(s.r, 0, rows, scratch, scratch_for(&s));
+    CHECK(vf_renderer_factor(s.r) == NULL);                   /* the frame is over */
+    vf_status_t st = vf_renderer_composite_band(s.r, 0, rows, scratch, scratch_for(&s));
     if (st == VF_ERR_STATE)
         return; /* refused: fine */
     CHECK_EQ(st, VF_OK);
-    CHECK_EQ(vf_warp_band(s.r, &got, 0, 25), VF_OK);
+    CHECK_EQ(vf_renderer_warp_band(s.r, &got, 0, 25), VF_OK);
     CHECK_MSG(memcmp(pixels[0], pixels[1], 25 * 25 * 3) == 0,
-              "vf_composite_band after vf_renderer_set_tf returned VF_OK with a picture of neither transfer function");
+              "vf_renderer_composite_band after vf_renderer_set_tf returned VF_OK with a picture of neither transfer function");
 }
 
 static void create_arguments(void)
@@ -379,11 +381,11 @@ static void two_renderers(void)
     CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
     vf_view_t view = {7000, -2000, 100, 65536};
     vf_image_t a = image_of(0, 30, 30, VF_FORMAT_RGB888), b = image_of(1, 30, 30, VF_FORMAT_RGB888);
-    CHECK_EQ(vf_render(s.r, &view, &a, scratch, scratch_for(&s)), VF_OK);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &a, scratch, scratch_for(&s)), VF_OK);
     CHECK_EQ(vf_renderer_set_window(r2, (vf_window_t){255, 0}), VF_OK);
     CHECK_EQ(vf_renderer_set_tf(r2, &tf), VF_OK);
-    CHECK_EQ(vf_render(r2, &view, &b, scratch, vf_band_scratch_bytes(r2, 64)), VF_OK);
-    CHECK_EQ(vf_render(s.r, &view, &b, scratch, scratch_for(&s)), VF_OK);
+    CHECK_EQ(vf_renderer_draw(r2, &view, &b, scratch, vf_renderer_band_scratch_bytes(r2, 64)), VF_OK);
+    CHECK_EQ(vf_renderer_draw(s.r, &view, &b, scratch, scratch_for(&s)), VF_OK);
     CHECK(memcmp(pixels[0], pixels[1], 30 * 30 * 3) == 0);
 }
 
@@ -404,10 +406,10 @@ static void null_and_range_safe(void)
     for (size_t i = 0; i < sizeof m; i++)
         CHECK_EQ(bytes[i], 0xA5);
     CHECK(vf_renderer_params(NULL) == NULL);
-    CHECK(vf_render_factor(NULL) == NULL);
-    CHECK(vf_render_intermediate(NULL) == NULL);
-    CHECK(vf_render_preint_table(NULL) == NULL);
-    CHECK(vf_render_point_table(NULL) == NULL);
+    CHECK(vf_renderer_factor(NULL) == NULL);
+    CHECK(vfi_renderer_intermediate(NULL) == NULL);
+    CHECK(vfi_renderer_preint_table(NULL) == NULL);
+    CHECK(vfi_renderer_point_table(NULL) == NULL);
     const char *names[] = {vf_lookup_name(VF_LOOKUP_COUNT), vf_correction_name(VF_CORRECTION_COUNT),
                            vf_buffer_name(VF_BUFFER_COUNT), vf_mode_name((vf_mode_t)-1)};
     for (int n = 0; n < 4; n++)

@@ -11,7 +11,9 @@
 #include <string.h>
 
 #include "check.h"
+#include "frame.h"
 #include "volfix.h"
+#include "volfix_internal.h"
 
 #define W 31
 #define H 27
@@ -60,22 +62,22 @@ static vf_status_t create(vf_renderer_t **r, vf_arena_t *arena, unsigned char *b
 /* The frame begun, composited in `bands` bands one after another, then warped. */
 static vf_status_t finish(vf_renderer_t *r, unsigned char *px, uint32_t bands)
 {
-    const uint32_t h = vf_render_factor(r)->int_h;
+    const uint32_t h = vf_renderer_factor(r)->int_h;
     for (uint32_t b = 0; b < bands; b++) {
         const uint32_t v0 = h * b / bands, v1 = h * (b + 1) / bands;
         if (v0 == v1)
             continue;
-        vf_status_t st = vf_composite_band(r, v0, v1, scratch, vf_band_scratch_bytes(r, v1 - v0));
+        vf_status_t st = vf_renderer_composite_band(r, v0, v1, scratch, vf_renderer_band_scratch_bytes(r, v1 - v0));
         if (st != VF_OK)
             return st;
     }
     vf_image_t im = {px, W, H, W * 3, VF_FORMAT_RGB888};
-    return vf_warp_band(r, &im, 0, H);
+    return vf_renderer_warp_band(r, &im, 0, H);
 }
 
 static size_t inter_values(const vf_renderer_t *r)
 {
-    const vf_factor_t *f = vf_render_factor(r);
+    const vf_factor_t *f = vf_renderer_factor(r);
     return (size_t)f->int_w * f->int_h * 4;
 }
 
@@ -115,22 +117,22 @@ static void demand_equals_whole(void)
                 CHECK_EQ(vf_renderer_set_tf(got, &tf), VF_OK);
             }
             vf_image_t im = {want_px, W, H, W * 3, VF_FORMAT_RGB888};
-            CHECK_EQ(vf_render(want, &views[v], &im, scratch, vf_band_scratch_bytes(want, H * 4)), VF_OK);
-            memcpy(want_inter, vf_render_intermediate(want), inter_values(want) * sizeof want_inter[0]);
-            CHECK_EQ(vf_render_begin_one_thread(got, &views[v], W, H), VF_OK);
+            CHECK_EQ(vf_renderer_draw(want, &views[v], &im, scratch, vf_renderer_band_scratch_bytes(want, H * 4)), VF_OK);
+            memcpy(want_inter, vfi_renderer_intermediate(want), inter_values(want) * sizeof want_inter[0]);
+            CHECK_EQ(begin_frame(got, &views[v], W, H, 0, true), VF_OK);
             memset(got_px, 0, sizeof got_px);
             CHECK_EQ(finish(got, got_px, cases[c].bands), VF_OK);
             CHECK_EQ(inter_values(got), inter_values(want));
-            CHECK_MSG(memcmp(want_inter, vf_render_intermediate(got), inter_values(got) * sizeof want_inter[0]) == 0,
+            CHECK_MSG(memcmp(want_inter, vfi_renderer_intermediate(got), inter_values(got) * sizeof want_inter[0]) == 0,
                       "table %u x %u bits, view %zu: intermediate images differ", cases[c].size, cases[c].bits, v);
             CHECK_MSG(memcmp(want_px, got_px, sizeof got_px) == 0, "table %u x %u bits, view %zu: pictures differ",
                       cases[c].size, cases[c].bits, v);
         }
         /* a frame begun for threads after one built as read: the whole table, vf_render's */
         const size_t entries = (size_t)cases[c].size * cases[c].size * 4;
-        memcpy(want_table, vf_render_preint_table(want), entries * sizeof want_table[0]);
-        CHECK_EQ(vf_render_begin_parts(got, &views[5], W, H, 1), VF_OK);
-        const uint16_t *table = vf_render_preint_table(got);
+        memcpy(want_table, vfi_renderer_preint_table(want), entries * sizeof want_table[0]);
+        CHECK_EQ(begin_frame(got, &views[5], W, H, 1, false), VF_OK);
+        const uint16_t *table = vfi_renderer_preint_table(got);
         CHECK(table != NULL);
         if (table)
             CHECK_MSG(memcmp(want_table, table, entries * sizeof *table) == 0, "table %u: whole table differs",
@@ -154,20 +156,20 @@ static void demand_table_state(void)
     CHECK_EQ(create(&want, &aw, arena_want, &p, &vol, &tf), VF_OK);
     CHECK_EQ(create(&got, &ag, arena_got, &p, &vol, &tf), VF_OK);
     vf_image_t im = {want_px, W, H, W * 3, VF_FORMAT_RGB888};
-    CHECK_EQ(vf_render(want, &views[0], &im, scratch, vf_band_scratch_bytes(want, H * 4)), VF_OK);
-    memcpy(want_table, vf_render_preint_table(want), (size_t)256 * 256 * 4 * sizeof want_table[0]);
-    CHECK_EQ(vf_render_begin_one_thread(NULL, &views[0], W, H), VF_ERR_NULL);
-    CHECK_EQ(vf_render_begin_one_thread(got, NULL, W, H), VF_ERR_NULL);
-    CHECK_EQ(vf_render_begin_one_thread(got, &views[0], W, H), VF_OK);
-    CHECK(vf_render_preint_table(got) == NULL); /* unbuilt diagonals */
+    CHECK_EQ(vf_renderer_draw(want, &views[0], &im, scratch, vf_renderer_band_scratch_bytes(want, H * 4)), VF_OK);
+    memcpy(want_table, vfi_renderer_preint_table(want), (size_t)256 * 256 * 4 * sizeof want_table[0]);
+    CHECK_EQ(begin_frame(NULL, &views[0], W, H, 0, true), VF_ERR_NULL);
+    CHECK_EQ(begin_frame(got, NULL, W, H, 0, true), VF_ERR_NULL);
+    CHECK_EQ(begin_frame(got, &views[0], W, H, 0, true), VF_OK);
+    CHECK(vfi_renderer_preint_table(got) == NULL); /* unbuilt diagonals */
     CHECK_EQ(finish(got, got_px, 1), VF_OK);
-    CHECK(vf_render_preint_table(got) == NULL); /* the frame read only some of them */
+    CHECK(vfi_renderer_preint_table(got) == NULL); /* the frame read only some of them */
     CHECK_MSG(memcmp(want_px, got_px, sizeof got_px) == 0, "smooth volume: pictures differ");
-    CHECK_EQ(vf_render_begin(got, &views[1], W, H), VF_OK); /* the same slab length, every entry now */
-    const uint16_t *table = vf_render_preint_table(got);
+    CHECK_EQ(begin_frame(got, &views[1], W, H, 0, false), VF_OK); /* the same slab length, every entry now */
+    const uint16_t *table = vfi_renderer_preint_table(got);
     CHECK(table != NULL && memcmp(want_table, table, (size_t)256 * 256 * 4 * sizeof *table) == 0);
-    CHECK_EQ(vf_render_begin_one_thread(got, &views[1], W, H), VF_OK);
-    CHECK(vf_render_preint_table(got) == table); /* up to date and whole: kept */
+    CHECK_EQ(begin_frame(got, &views[1], W, H, 0, true), VF_OK);
+    CHECK(vfi_renderer_preint_table(got) == table); /* up to date and whole: kept */
 }
 
 /* The options whose loops read the table elsewhere build it whole, on one thread too. */
@@ -194,8 +196,8 @@ static void demand_not_asked(void)
         vf_arena_t ag;
         vf_renderer_t *got;
         CHECK_EQ(create(&got, &ag, arena_got, &p, &vol, &tf), VF_OK);
-        CHECK_EQ(vf_render_begin_one_thread(got, &views[0], W, H), VF_OK);
-        CHECK_MSG(vf_render_preint_table(got) != NULL, "option %d: the table is not whole", k);
+        CHECK_EQ(begin_frame(got, &views[0], W, H, 0, true), VF_OK);
+        CHECK_MSG(vfi_renderer_preint_table(got) != NULL, "option %d: the table is not whole", k);
     }
 }
 

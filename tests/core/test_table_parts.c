@@ -1,6 +1,6 @@
 /*
  * test_table_parts.c: a frame whose pre-integrated table is built in parts (vf_render_begin_parts,
- * vf_render_tables_part; core/renderer.c, preint.c): in any number of parts, run in any order, the table and the
+ * vf_renderer_build_table_part; core/renderer.c, preint.c): in any number of parts, run in any order, the table and the
  * picture equal those of vf_render to the bit; compositing before every part has run is refused; a part's
  * arguments and scratch are checked; a frame abandoned half built is rebuilt by the next. With the lut the parts
  * correct the view table (renderer.c), which must come out the same.
@@ -10,7 +10,9 @@
 #include <string.h>
 
 #include "check.h"
+#include "frame.h"
 #include "volfix.h"
+#include "volfix_internal.h"
 
 #define W 31
 #define H 27
@@ -64,15 +66,15 @@ static vf_status_t scene_create(scene_t *s, vf_mode_t mode, uint32_t table_size,
 
 static size_t band_bytes(const scene_t *s)
 {
-    return vf_band_scratch_bytes(s->r, 64);
+    return vf_renderer_band_scratch_bytes(s->r, 64);
 }
 
 /* Composite in one band and warp: the picture of a frame that has begun. */
 static vf_status_t finish(const scene_t *s, unsigned char *px)
 {
     vf_image_t im = {px, W, H, W * 3, VF_FORMAT_RGB888};
-    vf_status_t st = vf_composite_band(s->r, 0, vf_render_factor(s->r)->int_h, scratch[0], band_bytes(s));
-    return st == VF_OK ? vf_warp_band(s->r, &im, 0, H) : st;
+    vf_status_t st = vf_renderer_composite_band(s->r, 0, vf_renderer_factor(s->r)->int_h, scratch[0], band_bytes(s));
+    return st == VF_OK ? vf_renderer_warp_band(s->r, &im, 0, H) : st;
 }
 
 /* Every part of the frame begun, in a shuffled order, each with its own scratch. */
@@ -86,7 +88,7 @@ static vf_status_t run_parts(const scene_t *s, uint32_t parts)
         order[p - 1] = order[k], order[k] = t;
     }
     for (uint32_t p = 0; p < parts; p++) {
-        vf_status_t st = vf_render_tables_part(s->r, order[p], scratch[order[p]], vf_table_part_bytes(s->r));
+        vf_status_t st = vf_renderer_build_table_part(s->r, order[p], scratch[order[p]], vf_renderer_table_part_bytes(s->r));
         if (st != VF_OK)
             return st;
     }
@@ -110,27 +112,27 @@ static void parts_equal_whole(void)
         CHECK_EQ(scene_create(&s, VF_MODE_PREINT1, cases[c].size, cases[c].bits, cases[c].correction), VF_OK);
         const size_t entries = (size_t)cases[c].size * cases[c].size * 4;
         vf_image_t im = {want_px, W, H, W * 3, VF_FORMAT_RGB888}, other = {other_px, W, H, W * 3, VF_FORMAT_RGB888};
-        CHECK_EQ(vf_render(s.r, &b, &im, scratch[0], band_bytes(&s)), VF_OK);
-        const uint16_t *table = vf_render_preint_table(s.r);
+        CHECK_EQ(vf_renderer_draw(s.r, &b, &im, scratch[0], band_bytes(&s)), VF_OK);
+        const uint16_t *table = vfi_renderer_preint_table(s.r);
         CHECK((table != NULL) == (cases[c].bits == 16));
         if (table)
             memcpy(want_table, table, entries * sizeof *table);
         for (size_t k = 0; k < sizeof part_counts / sizeof part_counts[0]; k++) {
             const uint32_t parts = part_counts[k];
-            CHECK_EQ(vf_render(s.r, &a, &other, scratch[0], band_bytes(&s)), VF_OK); /* another slab length */
-            CHECK_EQ(vf_render_begin_parts(s.r, &b, W, H, parts), VF_OK);
+            CHECK_EQ(vf_renderer_draw(s.r, &a, &other, scratch[0], band_bytes(&s)), VF_OK); /* another slab length */
+            CHECK_EQ(begin_frame(s.r, &b, W, H, parts, false), VF_OK);
             /* the lut correction builds its table once: after the first frame the parts correct the view table
              * (16 bits, up to 512 entries), or nothing is pending (no view table) */
             const bool no_view = cases[c].correction == VF_CORRECTION_LUT && (cases[c].bits == 8 || cases[c].size > 512);
             const uint32_t pending = no_view || parts == 1 ? 0 : parts;
-            CHECK_EQ(vf_render_tables_pending(s.r), pending);
+            CHECK_EQ(vf_renderer_table_parts(s.r), pending);
             CHECK_EQ(run_parts(&s, parts), VF_OK);
-            CHECK_EQ(vf_render_tables_pending(s.r), 0);
+            CHECK_EQ(vf_renderer_table_parts(s.r), 0);
             memset(got_px, 0, sizeof got_px);
             CHECK_EQ(finish(&s, got_px), VF_OK);
             CHECK_MSG(memcmp(want_px, got_px, sizeof got_px) == 0, "table %u x %u bits, %u parts: pictures differ",
                       cases[c].size, cases[c].bits, parts);
-            table = vf_render_preint_table(s.r);
+            table = vfi_renderer_preint_table(s.r);
             if (table)
                 CHECK_MSG(memcmp(want_table, table, entries * sizeof *table) == 0,
                           "table %u, %u parts: tables differ", cases[c].size, parts);
@@ -145,71 +147,71 @@ static void parts_state(void)
     CHECK_EQ(scene_create(&s, VF_MODE_PREINT1, 64, 16, VF_CORRECTION_REBUILD), VF_OK);
     const vf_view_t a = {9000, 4000, 0, 65536}, b = {-3000, 12000, 700, 65536};
     vf_image_t im = {want_px, W, H, W * 3, VF_FORMAT_RGB888};
-    const size_t part_bytes = vf_table_part_bytes(s.r);
+    const size_t part_bytes = vf_renderer_table_part_bytes(s.r);
     CHECK(part_bytes > 0 && part_bytes <= sizeof scratch[0]);
-    CHECK_EQ(vf_table_part_bytes(NULL), 0);
-    CHECK_EQ(vf_render_tables_pending(NULL), 0);
-    CHECK_EQ(vf_render_tables_pending(s.r), 0); /* no frame */
-    CHECK_EQ(vf_render_tables_part(s.r, 0, scratch[0], part_bytes), VF_ERR_STATE);
-    CHECK_EQ(vf_render(s.r, &b, &im, scratch[0], band_bytes(&s)), VF_OK);
-    /* parts out of range */
-    CHECK_EQ(vf_render_begin_parts(s.r, &a, W, H, 0), VF_ERR_ARG);
-    CHECK(vf_render_factor(s.r) == NULL);
-    CHECK_EQ(vf_render_begin_parts(s.r, &a, W, H, VF_MAX_TABLE_PARTS + 1), VF_ERR_ARG);
-    CHECK_EQ(vf_render_begin_parts(NULL, &a, W, H, 2), VF_ERR_NULL);
-    CHECK_EQ(vf_render_begin_parts(s.r, NULL, W, H, 2), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_table_part_bytes(NULL), 0);
+    CHECK_EQ(vf_renderer_table_parts(NULL), 0);
+    CHECK_EQ(vf_renderer_table_parts(s.r), 0); /* no frame */
+    CHECK_EQ(vf_renderer_build_table_part(s.r, 0, scratch[0], part_bytes), VF_ERR_STATE);
+    CHECK_EQ(vf_renderer_draw(s.r, &b, &im, scratch[0], band_bytes(&s)), VF_OK);
+    /* parts out of range, or with the table built as compositing reads it (which needs one thread) */
+    CHECK_EQ(begin_frame(s.r, &a, W, H, VF_MAX_TABLE_PARTS + 1, false), VF_ERR_ARG);
+    CHECK(vf_renderer_factor(s.r) == NULL);
+    CHECK_EQ(begin_frame(s.r, &a, W, H, 2, true), VF_ERR_ARG);
+    CHECK_EQ(begin_frame(NULL, &a, W, H, 2, false), VF_ERR_NULL);
+    CHECK_EQ(begin_frame(s.r, NULL, W, H, 2, false), VF_ERR_NULL);
     /* a new slab length in 3 parts: no band until all three have run */
-    CHECK_EQ(vf_render_begin_parts(s.r, &a, W, H, 3), VF_OK);
-    CHECK_EQ(vf_render_tables_pending(s.r), 3);
-    CHECK(vf_render_preint_table(s.r) == NULL);
-    CHECK_EQ(vf_composite_band(s.r, 0, 1, scratch[0], band_bytes(&s)), VF_ERR_STATE);
-    CHECK_EQ(vf_render_tables_part(s.r, 3, scratch[0], part_bytes), VF_ERR_ARG);
-    CHECK_EQ(vf_render_tables_part(NULL, 0, scratch[0], part_bytes), VF_ERR_NULL);
-    CHECK_EQ(vf_render_tables_part(s.r, 0, NULL, part_bytes), VF_ERR_NULL);
-    CHECK_EQ(vf_render_tables_part(s.r, 0, scratch[0], part_bytes - 1), VF_ERR_NOMEM);
-    CHECK_EQ(vf_render_tables_part(s.r, 0, scratch[0], part_bytes), VF_OK);
-    CHECK_EQ(vf_render_tables_part(s.r, 0, scratch[0], part_bytes), VF_OK); /* again: nothing to do */
-    CHECK_EQ(vf_render_tables_part(s.r, 2, scratch[2], part_bytes), VF_OK);
-    CHECK_EQ(vf_composite_band(s.r, 0, 1, scratch[0], band_bytes(&s)), VF_ERR_STATE); /* part 1 missing */
+    CHECK_EQ(begin_frame(s.r, &a, W, H, 3, false), VF_OK);
+    CHECK_EQ(vf_renderer_table_parts(s.r), 3);
+    CHECK(vfi_renderer_preint_table(s.r) == NULL);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 0, 1, scratch[0], band_bytes(&s)), VF_ERR_STATE);
+    CHECK_EQ(vf_renderer_build_table_part(s.r, 3, scratch[0], part_bytes), VF_ERR_ARG);
+    CHECK_EQ(vf_renderer_build_table_part(NULL, 0, scratch[0], part_bytes), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_build_table_part(s.r, 0, NULL, part_bytes), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_build_table_part(s.r, 0, scratch[0], part_bytes - 1), VF_ERR_NOMEM);
+    CHECK_EQ(vf_renderer_build_table_part(s.r, 0, scratch[0], part_bytes), VF_OK);
+    CHECK_EQ(vf_renderer_build_table_part(s.r, 0, scratch[0], part_bytes), VF_OK); /* again: nothing to do */
+    CHECK_EQ(vf_renderer_build_table_part(s.r, 2, scratch[2], part_bytes), VF_OK);
+    CHECK_EQ(vf_renderer_composite_band(s.r, 0, 1, scratch[0], band_bytes(&s)), VF_ERR_STATE); /* part 1 missing */
     /* abandoned: the next frame, on one thread, builds the whole table again */
-    CHECK_EQ(vf_render(s.r, &a, &im, scratch[0], band_bytes(&s)), VF_OK);
-    CHECK_EQ(vf_render_begin_parts(s.r, &b, W, H, 2), VF_OK);
-    CHECK_EQ(vf_render_tables_part(s.r, 1, scratch[1], part_bytes), VF_OK);
-    CHECK_EQ(vf_render(s.r, &a, &im, scratch[0], band_bytes(&s)), VF_OK); /* abandoned again */
-    CHECK_EQ(vf_render_begin_parts(s.r, &a, W, H, 4), VF_OK);
-    CHECK_EQ(vf_render_tables_pending(s.r), 0); /* the table of a is whole: nothing to build */
-    CHECK_EQ(vf_render_tables_part(s.r, 3, scratch[3], part_bytes), VF_OK);
+    CHECK_EQ(vf_renderer_draw(s.r, &a, &im, scratch[0], band_bytes(&s)), VF_OK);
+    CHECK_EQ(begin_frame(s.r, &b, W, H, 2, false), VF_OK);
+    CHECK_EQ(vf_renderer_build_table_part(s.r, 1, scratch[1], part_bytes), VF_OK);
+    CHECK_EQ(vf_renderer_draw(s.r, &a, &im, scratch[0], band_bytes(&s)), VF_OK); /* abandoned again */
+    CHECK_EQ(begin_frame(s.r, &a, W, H, 4, false), VF_OK);
+    CHECK_EQ(vf_renderer_table_parts(s.r), 0); /* the table of a is whole: nothing to build */
+    CHECK_EQ(vf_renderer_build_table_part(s.r, 3, scratch[3], part_bytes), VF_OK);
     CHECK_EQ(finish(&s, got_px), VF_OK);
     CHECK(memcmp(want_px, got_px, sizeof got_px) == 0);
     /* a transfer function set between the parts ends the frame */
-    CHECK_EQ(vf_render_begin_parts(s.r, &b, W, H, 2), VF_OK);
+    CHECK_EQ(begin_frame(s.r, &b, W, H, 2, false), VF_OK);
     vf_tf_t tf = {s.pts, 3};
     CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
-    CHECK_EQ(vf_render_tables_part(s.r, 0, scratch[0], part_bytes), VF_ERR_STATE);
-    CHECK_EQ(vf_render_tables_pending(s.r), 0);
+    CHECK_EQ(vf_renderer_build_table_part(s.r, 0, scratch[0], part_bytes), VF_ERR_STATE);
+    CHECK_EQ(vf_renderer_table_parts(s.r), 0);
     /* the lut: a frame that leaves the view table half corrected is corrected again by the next */
     scene_t l;
     CHECK_EQ(scene_create(&l, VF_MODE_PREINT1, 200, 16, VF_CORRECTION_LUT), VF_OK);
-    CHECK_EQ(vf_render(l.r, &b, &im, scratch[0], band_bytes(&l)), VF_OK);
-    CHECK_EQ(vf_render(l.r, &a, &im, scratch[0], band_bytes(&l)), VF_OK);
-    CHECK_EQ(vf_render_begin_parts(l.r, &b, W, H, 3), VF_OK);
-    CHECK_EQ(vf_render_tables_pending(l.r), 3);
-    CHECK_EQ(vf_render_tables_part(l.r, 1, scratch[1], vf_table_part_bytes(l.r)), VF_OK);
-    CHECK_EQ(vf_composite_band(l.r, 0, 1, scratch[0], band_bytes(&l)), VF_ERR_STATE);
-    CHECK_EQ(vf_render_begin_parts(l.r, &a, W, H, 2), VF_OK); /* abandoned, back at a's slab length */
-    CHECK_EQ(vf_render_tables_pending(l.r), 2);
+    CHECK_EQ(vf_renderer_draw(l.r, &b, &im, scratch[0], band_bytes(&l)), VF_OK);
+    CHECK_EQ(vf_renderer_draw(l.r, &a, &im, scratch[0], band_bytes(&l)), VF_OK);
+    CHECK_EQ(begin_frame(l.r, &b, W, H, 3, false), VF_OK);
+    CHECK_EQ(vf_renderer_table_parts(l.r), 3);
+    CHECK_EQ(vf_renderer_build_table_part(l.r, 1, scratch[1], vf_renderer_table_part_bytes(l.r)), VF_OK);
+    CHECK_EQ(vf_renderer_composite_band(l.r, 0, 1, scratch[0], band_bytes(&l)), VF_ERR_STATE);
+    CHECK_EQ(begin_frame(l.r, &a, W, H, 2, false), VF_OK); /* abandoned, back at a's slab length */
+    CHECK_EQ(vf_renderer_table_parts(l.r), 2);
     CHECK_EQ(run_parts(&l, 2), VF_OK);
     CHECK_EQ(finish(&l, got_px), VF_OK);
     CHECK(memcmp(want_px, got_px, sizeof got_px) == 0); /* vf_render's picture of a, above */
     /* order 0: the point table is built in begin whatever the parts */
     scene_t p;
     CHECK_EQ(scene_create(&p, VF_MODE_POINT, 256, 16, VF_CORRECTION_REBUILD), VF_OK);
-    CHECK_EQ(vf_render(p.r, &b, &im, scratch[0], band_bytes(&p)), VF_OK);
-    CHECK_EQ(vf_render_begin_parts(p.r, &a, W, H, 8), VF_OK);
-    CHECK_EQ(vf_render_tables_pending(p.r), 0);
-    CHECK(vf_render_point_table(p.r) != NULL);
-    CHECK_EQ(vf_render_tables_part(p.r, 7, scratch[7], vf_table_part_bytes(p.r)), VF_OK);
-    CHECK_EQ(vf_render_tables_part(p.r, 8, scratch[0], vf_table_part_bytes(p.r)), VF_ERR_ARG);
+    CHECK_EQ(vf_renderer_draw(p.r, &b, &im, scratch[0], band_bytes(&p)), VF_OK);
+    CHECK_EQ(begin_frame(p.r, &a, W, H, 8, false), VF_OK);
+    CHECK_EQ(vf_renderer_table_parts(p.r), 0);
+    CHECK(vfi_renderer_point_table(p.r) != NULL);
+    CHECK_EQ(vf_renderer_build_table_part(p.r, 7, scratch[7], vf_renderer_table_part_bytes(p.r)), VF_OK);
+    CHECK_EQ(vf_renderer_build_table_part(p.r, 8, scratch[0], vf_renderer_table_part_bytes(p.r)), VF_ERR_ARG);
     CHECK_EQ(finish(&p, got_px), VF_OK);
 }
 

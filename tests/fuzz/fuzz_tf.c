@@ -1,6 +1,6 @@
 /* fuzz_tf.c: a transfer-function file (vfp_tf_load, as x.tf), then what the programs do with one: map it through
  * the windows of an 8-bit and a 16-bit volume (vfp_tf_to_core), move it as the level and width knobs do
- * (vfp_tf_move), and hand the points to the core, which must accept them (vf_point_table). */
+ * (vfp_tf_move), and hand the points to the core, which must accept them (vf_table_point). */
 #include "fuzz.h"
 #include "io/tf.h"
 
@@ -19,7 +19,7 @@ static void to_core(const vfp_tf_t *tf, const vfp_volume_t *vol, vf_window_t win
     uint16_t table[TABLE_SIZE * 4];
     vf_arena_t arena;
     vf_arena_init(&arena, scratch, bytes);
-    if (!scratch || vf_point_table(&core_tf, TABLE_SIZE, 65536, &arena, table) != VF_OK)
+    if (!scratch || vf_table_point(&core_tf, TABLE_SIZE, 65536, &arena, table) != VF_OK)
         abort();
     free(scratch);
 }

@@ -90,7 +90,7 @@ if [ "$(rays_hash --rays 1)" = "$(rays_hash)" ] && [ "$(rays_hash --reference --
 else
     fail "--rays 1" "the hashes differ from the default's"
 fi
-# threads build the pre-integrated table in parts (vf_render_tables_part): the same frame for any number
+# threads build the pre-integrated table in parts (vf_renderer_build_table_part): the same frame for any number
 threads_same=yes
 for size in 256 1024; do
     one=$(rays_hash --table-size "$size")

@@ -27,7 +27,7 @@ static void triangles_are_reversals(void)
     vf_tf_t tf = {pts, 2};
     vf_arena_t arena;
     vf_arena_init(&arena, scratch_buf, sizeof scratch_buf);
-    CHECK_EQ(vf_preint_table(&tf, 64, 3 << 16, VF_BUILDER_INCREMENTAL, &arena, table_a), VF_OK);
+    CHECK_EQ(vf_table_preint(&tf, 64, 3 << 16, VF_BUILDER_INCREMENTAL, &arena, table_a), VF_OK);
     int checked = 0;
     for (uint32_t f = 0; f < 64; f++)
         for (uint32_t b = f + 2; b < 64; b++) {
@@ -49,8 +49,8 @@ static void constant_tf_preint_is_point(void)
     vf_arena_t arena;
     vf_arena_init(&arena, scratch_buf, sizeof scratch_buf);
     for (uint32_t slab = 65536; slab <= 3 * 65536; slab += 40000) {
-        CHECK_EQ(vf_point_table(&tf, 128, slab, &arena, table_b), VF_OK);
-        CHECK_EQ(vf_preint_table(&tf, 128, slab, VF_BUILDER_INCREMENTAL, &arena, table_a), VF_OK);
+        CHECK_EQ(vf_table_point(&tf, 128, slab, &arena, table_b), VF_OK);
+        CHECK_EQ(vf_table_preint(&tf, 128, slab, VF_BUILDER_INCREMENTAL, &arena, table_a), VF_OK);
         for (uint32_t e = 0; e < 128 * 128; e++)
             for (int c = 0; c < 4; c++)
                 CHECK_MSG(abs((int)table_a[e * 4 + c] - (int)table_b[(e / 128) * 4 + c]) <= 1,
@@ -87,8 +87,8 @@ static void constant_tf_slab_length_independent(void)
                 uint8_t rgb[33 * 33 * 3];
                 vf_image_t img = {rgb, 33, 33, 33 * 3, VF_FORMAT_RGB888};
                 vf_view_t view = {(int32_t)lround(deg * 65536.0 / 360), 0, 0, 65536};
-                CHECK_EQ(vf_render(r, &view, &img, scratch_buf, sizeof scratch_buf), VF_OK);
-                double d = vf_render_factor(r)->slab_q16 / 65536.0;
+                CHECK_EQ(vf_renderer_draw(r, &view, &img, scratch_buf, sizeof scratch_buf), VF_OK);
+                double d = vf_renderer_factor(r)->slab_q16 / 65536.0;
                 double segments = mode ? N - 1 : N, alpha = 1 - exp(-tau * d * segments);
                 const uint8_t *centre = rgb + (16 * 33 + 16) * 3;
                 for (int c = 0; c < 3; c++)

@@ -1,0 +1,31 @@
+/*
+ * volfix_internal.h: what volfix's own tests and simulator reach into, beyond the public interface of volfix.h.
+ * Not installed: nothing here is promised to users, and it may change with any version.
+ *   - fault injection in the arena, for the tests' fault loops;
+ *   - read access to the intermediate image and the tables, for tests that check a stage on its own.
+ */
+#ifndef VOLFIX_INTERNAL_H
+#define VOLFIX_INTERNAL_H
+
+#include "volfix.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Allocation number `count` + 1 from this arena fails, and every one after it (0: none fails). The count
+ * includes the allocations already made, so `vfi_arena_fail_after(a, a->allocs + n)` lets n more succeed. */
+void vfi_arena_fail_after(vf_arena_t *arena, uint32_t count);
+
+/* The intermediate image of the frame begun last (Q1.15 premultiplied r, g, b, a, int_w * int_h pixels), and the
+ * tables (Q1.15 r, g, b, a per entry, colour premultiplied; the 2D table indexed [front * N + back]). NULL before
+ * they exist, and for 8-bit tables. */
+const uint16_t *vfi_renderer_intermediate(const vf_renderer_t *renderer);
+const uint16_t *vfi_renderer_point_table(const vf_renderer_t *renderer);
+const uint16_t *vfi_renderer_preint_table(const vf_renderer_t *renderer);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* VOLFIX_INTERNAL_H */
