@@ -14,13 +14,11 @@ static VF_ALWAYS_INLINE const uint16_t *point_entry(const uint16_t *table, const
 }
 
 /* point with a 16-bit table and one ray per voxel column: the loop on its own, everything it reads in locals (the
- * table's size too: the stores to the pixels might change cls->n as far as the compiler knows). With these and the
- * wrappers below, engine's point frame went from 63.1 M to 60.2 M instructions (callgrind, make bench's count).
+ * table's size too: the stores to the pixels might change cls->n as far as the compiler knows).
  * With VF_LOOK_AHEAD each pixel's entry is looked up one open pixel ahead of its blend, as preint1's loop does
- * (composite_order1.c), so that the branches on the entry do not wait for its load: engine's frame 5.12 -> 4.84 ms,
- * brainsmall's 6.73 -> 6.52, with 7% and 9% more instructions (medians of 16 and 10 round-robin runs). The span's
- * end is tested once a pixel, before the look-up ahead (the last pixel's blend has a copy of its own): 64.24 ->
- * 63.46 M instructions, 5.385 -> 5.220 ms (engine, medians of 14), brainsmall 6.580 -> 6.495 (of 10). */
+ * (composite_order1.c), so that the branches on the entry do not wait for its load. The span's end is tested once
+ * a pixel, before the look-up ahead (the last pixel's blend has a copy of its own). What each of these saves is in
+ * docs/performance.md. */
 static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *m, bool n256)
 {
     const slice_place_t *sl = job->front;
@@ -88,8 +86,8 @@ static VF_ALWAYS_INLINE void row_general(const row_job_t *job, run_merge_t *m, b
     }
 }
 
-/* The general loops out of vfi_row_order0, so that a row of the plain path does not pay for their registers: the
- * dispatch saved six registers a row for them (24 instructions). */
+/* The general loops out of vfi_row_order0, so that a row of the plain path does not pay for their registers (inlined,
+ * the dispatch would save six registers a row for them: 24 instructions). */
 static VF_NOINLINE void row_general_any(const row_job_t *job, run_merge_t *m, bool preclass)
 {
     const bool one_ray = VF_MAX_RAYS == 1 || job->step == 65536; /* constant in one-ray builds */

@@ -7,9 +7,8 @@
  * walked the pixel, that is when the pixel lies in one of the runs the last slab walked in this row (an open pixel
  * now was open then, and every open pixel of a walked run was given its back sample). So each run is cut where the
  * last slab's runs begin and end, into spans whose fronts are all in the buffer or all sampled here, and the loops
- * over pixels test nothing per pixel. (A slice tag in every buffered word, tested per pixel, measured 1.4% more
- * instructions per frame for engine and 7% more for brainsmall, whose runs are long: callgrind, `volfix-sim bench
- * VOLUME --preset ramp --frames 1`.)
+ * over pixels test nothing per pixel: cheaper than a slice tag in every buffered word tested per pixel, above all
+ * on long runs (docs/performance.md).
  */
 #include "composite.h"
 
@@ -21,8 +20,8 @@
  * column of pixel u (the slice buffer's rows have one element before column 0, for a front slice one column to the
  * right of the back one), the pixels by u; a sampled front at u - front_cu of its slice row. span_plain's loop works
  * on a copy of loop, a local of its own: then the stores to the buffer and the pixels cannot make the compiler read
- * these again (as first written the loop kept eleven values on the stack and read them every segment; read through
- * the caller's struct, they are read again after every store where span_plain is out of line, as at -Os). */
+ * these again (read through the caller's struct, they would be read again after every store wherever span_plain is
+ * out of line, as at -Os). */
 typedef struct plain_loop {
     const uint8_t *top, *bottom;     /* the back sample's two slice rows */
     const uint32_t *front_buf;
@@ -51,8 +50,8 @@ static VF_NOINLINE void build_entry(const vfi_demand_t *demand, const uint16_t *
 
 /* Pixel u's entry: its front position from the buffer (buffered) or sampled here (pr's fields), its back position
  * sampled and stored for the next slab. A 256-entry table's rounding is folded into the lerps (vfi_entry_rows) only
- * with VF_SPECIAL_LOOPS: two instructions a sample fewer on x86-64, 0.5 M a frame of engine's (callgrind, make
- * bench's count), but 6% more of the Cortex-M4's compositing at -Os (68,503 -> 72,470 ticks, `make mcu-run`). */
+ * with VF_SPECIAL_LOOPS: it saves two instructions a sample on x86-64 but costs the Cortex-M4 at -Os more than it
+ * saves (docs/performance.md), and the MCU build leaves the special loops out. */
 static VF_ALWAYS_INLINE const uint16_t *plain_entry(const plain_loop_t *l, const plain_row_t *pr, uint32_t u,
                                                     bool buffered, bool n256)
 {
@@ -81,9 +80,8 @@ static VF_ALWAYS_INLINE void plain_blend(const plain_loop_t *l, const plain_row_
 /* The default path (nearest lookup, 16-bit table, no lut, full precision), where preint1 frames spend their time:
  * the open pixels from u, which is open, to y, their front entries from the buffer (buffered) or sampled here.
  * With VF_LOOK_AHEAD each pixel's entry is looked up one open pixel ahead of its blend, so that the branches on the
- * entry (seen, opaque) do not wait for its load, which is mostly from L2 (a 512 KB table): engine's frame 6.42 ->
- * 5.96 ms, brainsmall's 7.51 -> 6.95, with 6% and 9% more instructions (round-robin runs of `volfix-sim bench
- * VOLUME --preset ramp`, medians of 16 and 10; point's loop does the same, composite_order0.c). In a table built as
+ * entry (seen, opaque) do not wait for its load, which is mostly from L2 (a 512 KB table): fewer milliseconds for
+ * a few more instructions (docs/performance.md; point's loop does the same, composite_order0.c). In a table built as
  * read an unbuilt entry's diagonal is built where the loop meets it: with the image-sized buffer the look-ahead has
  * stored the next pixel's back position over its front one, so the loop may not leave there and come back.
  * Returns the first open pixel at or after y. */

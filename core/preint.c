@@ -386,9 +386,8 @@ static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t
 
 /* A grey transfer function's block (every weight's three channels equal, list_intervals): the three channels are
  * the same numbers, so one is worked out and stored three times; the table is the three-channel one to the bit
- * (tests/core/test_classify_tables.c). Engine's preint1 frame, ramp preset: 79.53 -> 77.97 M instructions and
- * 5.885 -> 5.780 ms (callgrind; medians of 14 round-robin runs of `volfix-sim bench`). Not in builds without
- * VF_SPECIAL_LOOPS. */
+ * (tests/core/test_classify_tables.c); about 2% of engine's preint1 frame (docs/performance.md). Not in builds
+ * without VF_SPECIAL_LOOPS. */
 static void block_dense_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
 {
     block_dense_body(d, s0, end, k_lo, true);
@@ -538,7 +537,7 @@ void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, ui
     entry_q15_t unbuilt, *e = (entry_q15_t *)out.q15;
     unbuilt.v[0] = unbuilt.v[1] = unbuilt.v[2] = VFI_UNBUILT_Q15;
     unbuilt.v[3] = 0;
-    /* four entries a step: the whole table every frame, 4 instructions an entry one at a time (callgrind) */
+    /* four entries a step: this runs over the whole table every frame */
     size_t k = 0;
     for (; k + 4 <= (size_t)n * n; k += 4) {
         e[k] = unbuilt;

@@ -41,7 +41,7 @@ struct vf_renderer {
                              * a in Q1.15 (16 bits) or 8 bits */
     bool tables_valid;
     uint32_t tables_generation, tables_slab_q16;
-    uint32_t frame_parts;   /* the parts the frame begun last was given (vf_render_begin_parts) */
+    uint32_t frame_parts;   /* the parts the frame begun last was given (vf_frame_t.table_parts) */
     uint32_t table_parts;   /* of those, how many build the table; 0 when it was built in begin or was up to date */
     bool table_part_done[VF_MAX_TABLE_PARTS]; /* one flag a part, so that parts running side by side share none */
     uint16_t *lut_f;        /* lut correction knots, VFI_LUT_KNOTS each, when correction is lut */
@@ -54,7 +54,7 @@ struct vf_renderer {
     bool parts_build;       /* the table's parts build its diagonals, not only their view-table entries */
 #if VF_TABLE_ON_DEMAND
     bool table_unbuilt;     /* the 2D table has diagonals marked unbuilt, which compositing builds as it reads
-                             * them, with demand (vf_render_begin_one_thread) */
+                             * them, with demand (vf_frame_t.one_thread) */
     vfi_demand_t demand;
 #endif
     vfi_lookup_ctx_t lookup;

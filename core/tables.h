@@ -100,7 +100,7 @@ void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, c
  * bit. vfi_preint_table_incremental is the one part of one. */
 void vfi_preint_table_part(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
                            vfi_table_out_t out, uint32_t part, uint32_t parts);
-/* A 2D table built as compositing reads it (a frame composited on one thread: vf_render_begin_one_thread): begin
+/* A 2D table built as compositing reads it (a frame composited on one thread: vf_frame_t.one_thread): begin
  * builds the diagonal itself, lists the intervals and marks every other entry unbuilt, colour VFI_UNBUILT_Q15 and
  * opacity 0, which no entry has (values are at most 1.0, 32768). A reader that meets such an entry asks for the
  * diagonal |b - f| of entry (f, b), which vfi_preint_demand_diagonal builds whole, both triangles, to the bit as

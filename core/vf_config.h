@@ -21,8 +21,8 @@
 #define VF_DEFAULT_TABLE 256
 #endif
 
-/* Most parts a frame's pre-integrated table can be built in side by side (vf_render_begin_parts); 1 for a
- * single-core build, which then has no vf_render_begin_parts and vf_renderer_build_table_part. */
+/* Most parts a frame's pre-integrated table can be built in side by side (vf_frame_t.table_parts); 1 for a
+ * single-core build, whose begin always builds the whole table. */
 #ifndef VF_MAX_TABLE_PARTS
 #define VF_MAX_TABLE_PARTS 64
 #endif
@@ -34,8 +34,8 @@
 #define VF_VIEW_TABLE 1
 #endif
 
-/* Tables built as they are read: a frame composited on one thread (vf_render_begin_one_thread) in the default
- * preint1 path builds only the diagonals of the 2D table its segments use. 0 leaves it out, and that function. */
+/* Tables built as they are read: a frame composited on one thread (vf_frame_t.one_thread) in the default
+ * preint1 path builds only the diagonals of the 2D table its segments use. 0 leaves it out (one_thread then changes nothing). */
 #ifndef VF_TABLE_ON_DEMAND
 #define VF_TABLE_ON_DEMAND 1
 #endif
@@ -98,8 +98,8 @@
 
 /* The hot compositing loops are written once and specialised by calling a static inline body with constant
  * arguments from small wrappers. Compilers that know the attribute are told to inline such a body always: GCC's
- * own heuristics left a 40-line body out of line and tested the constants per pixel. A build for size (-Os, as
- * the microcontroller's) keeps one copy instead. */
+ * own heuristics leave a 40-line body out of line, and then test the constants per pixel. A build for size (-Os,
+ * as the microcontroller's) keeps one copy instead. */
 #ifndef VF_ALWAYS_INLINE
 #if (defined(__GNUC__) || defined(__clang__)) && !defined(__OPTIMIZE_SIZE__)
 #define VF_ALWAYS_INLINE inline __attribute__((always_inline))

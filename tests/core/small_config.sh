@@ -4,7 +4,7 @@
 # brute-force table builder with VF_ERR_UNSUPPORTED (which the whole core renders or builds), and render every
 # other frame of the program exactly as the whole core does (108 frames: every mode, lookup and correction, 3
 # views; and one renderer a mode, correction and table format through 6 views and a
-# new transfer function. The whole core builds its tables in 3 parts, the small one in vf_render_begin; with the
+# new transfer function. The whole core builds its tables in 3 parts, the small one in vf_renderer_begin; with the
 # lut the whole core corrects a view table, the small one each segment).
 cd "$(dirname "$0")/../.." || exit 2
 out=${BUILD:-build}/small-config

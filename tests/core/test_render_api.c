@@ -231,10 +231,10 @@ static void bad_tf_keeps_picture(void)
     CHECK(memcmp(pixels[0], pixels[1], 25 * 25 * 3) == 0);
 }
 
-/* Changing the transfer function between vf_render_begin and the bands: the bands must either refuse
+/* Changing the transfer function between vf_renderer_begin and the bands: the bands must either refuse
  * (VF_ERR_STATE, as for every other out-of-order call) or composite the new transfer function. CORE BUG if they
  * composite the old tables over the new run lists: vf_renderer_set_tf does not end the frame (have_frame stays
- * true) and the tables are rebuilt only in vf_render_begin. */
+ * true) and the tables are rebuilt only in vf_renderer_begin. */
 static void tf_change_inside_frame(void)
 {
     scene_t s;

@@ -1,6 +1,6 @@
 /*
  * test_table_demand.c: a frame composited on one thread whose 2D table is built as compositing reads it
- * (vf_render_begin_one_thread; core/preint.c, composite_order1.c): its intermediate image and picture equal
+ * (vf_frame_t.one_thread; core/preint.c, composite_order1.c): its intermediate image and picture equal
  * vf_render's to the bit, for table sizes from the smallest to the largest, the 10-, 12- and 16-bit formats, both
  * buffers, bands one after another, views with the same slab length (the table kept, more diagonals built) and a
  * transfer function changed between frames; the table is not handed out while diagonals are unbuilt, and a frame
@@ -141,7 +141,7 @@ static void demand_equals_whole(void)
 }
 
 /* A smooth volume reads only diagonals near the middle of a 256-entry table: the table is not handed out while the
- * others are unbuilt; vf_render_begin then builds it whole, and the next frame on one thread keeps it whole. */
+ * others are unbuilt; a frame not on one thread then builds it whole, and the next frame on one thread keeps it whole. */
 static void demand_table_state(void)
 {
     fill_volume(false);

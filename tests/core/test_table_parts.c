@@ -1,7 +1,7 @@
 /*
- * test_table_parts.c: a frame whose pre-integrated table is built in parts (vf_render_begin_parts,
+ * test_table_parts.c: a frame whose pre-integrated table is built in parts (vf_frame_t.table_parts,
  * vf_renderer_build_table_part; core/renderer.c, preint.c): in any number of parts, run in any order, the table and the
- * picture equal those of vf_render to the bit; compositing before every part has run is refused; a part's
+ * picture equal those of vf_renderer_draw to the bit; compositing before every part has run is refused; a part's
  * arguments and scratch are checked; a frame abandoned half built is rebuilt by the next. With the lut the parts
  * correct the view table (renderer.c), which must come out the same.
  */
