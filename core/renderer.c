@@ -1,9 +1,9 @@
 /*
  * renderer.c: the renderer's life (create, window, transfer function) and a frame's script: check, factor,
- * bring the tables up to date, composite, warp. Memory layout and invariants are in render.h.
+ * bring the tables up to date, composite, warp. Memory layout and invariants are in renderer.h.
  */
 #include "arena.h"
-#include "render.h"
+#include "renderer.h"
 #include "volfix_internal.h"
 
 static vf_status_t check_params(const vf_params_t *p);

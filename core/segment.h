@@ -8,7 +8,7 @@
 #ifndef VF_SEGMENT_H
 #define VF_SEGMENT_H
 
-#include "render.h"
+#include "renderer.h"
 
 /* Entry e (index into the table, in entries) as Q1.15. An 8-bit value v is v / 255: (257 v + 1) / 2 is
  * v * 32768 / 255 within half an LSB, and 255 gives exactly 32768. */

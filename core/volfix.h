@@ -112,7 +112,8 @@ typedef enum vf_lookup {
 
 typedef enum vf_correction {
     VF_CORRECTION_REBUILD, /* tables rebuilt for each view's exact slab length */
-    VF_CORRECTION_LUT,     /* tables built once for length 1, each segment corrected through a lookup on a */
+    VF_CORRECTION_LUT,     /* tables built once for length 1, each segment corrected through a lookup on its
+                            * opacity a (Schulze et al.'s way: a' = 1 - (1 - a)^d, C' = C a' / a) */
     VF_CORRECTION_COUNT
 } vf_correction_t;
 

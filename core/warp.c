@@ -8,7 +8,7 @@
  * whose four neighbours are all inside it take a path without bounds checks.
  */
 #include "fixmath.h"
-#include "render.h"
+#include "renderer.h"
 
 #define ONE_Q32 (INT64_C(1) << 32)
 

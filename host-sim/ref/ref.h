@@ -66,11 +66,10 @@ typedef struct ref_params {
     /* Section 4c. 0, section 4 as written (a slab whose front or back sample is outside the box's side faces is
      * left out; every slice of order 0 stands for one slab); 1, partial slabs: a ray's part of a slab inside the
      * box is composited from the side-face crossing on, with the entry corrected for its length, and order 0's
-     * slices stand for the ray's part in the box from halfway to the slice before to halfway to the slice after.
-     * Not in the core yet. */
+     * slices stand for the ray's part in the box from halfway to the slice before to halfway to the slice after. */
     int partial_slabs;
     /* Section 4b. Rays R per voxel column along each intermediate axis, 1, 2, 4, 8 or 16 (0 means 1): the
-     * intermediate image has R x R pixels per voxel and the warp reads it at (R u, R v). Not in the core yet. */
+     * intermediate image has R x R pixels per voxel and the warp reads it at (R u, R v). */
     int rays;
 } ref_params_t;
 

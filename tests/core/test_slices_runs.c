@@ -8,7 +8,7 @@
 
 #include "arena.h"
 #include "check.h"
-#include "render.h"
+#include "renderer.h"
 
 static uint64_t rng_state = 0x13198A2E03707344u;
 static uint64_t rnd64(void)

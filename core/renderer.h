@@ -1,13 +1,13 @@
 /*
- * render.h: the renderer's private state, shared by the stage files (renderer.c, composite.c, warp.c).
+ * renderer.h: the renderer's private state, shared by the stage files (renderer.c, composite.c, warp.c).
  *
  * Everything lives in the caller's arena, in this order:
  *   [renderer | slices x3 | classification | table scratch | tables | intermediate image] mark [run lists]
  * The part before the mark depends only on the volume's size and the parameters and is reserved once; the run
  * lists depend on the transfer function and are rebuilt after rewinding to the mark.
  */
-#ifndef VF_RENDER_H
-#define VF_RENDER_H
+#ifndef VF_RENDERER_H
+#define VF_RENDERER_H
 
 #include "classify.h"
 #include "runs.h"
