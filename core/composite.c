@@ -91,7 +91,11 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     job.step_shift = 16;
     while ((1u << job.step_shift) > job.step)
         job.step_shift--;
-    job.plain = vfi_plain_path(job.bilinear, job.lookup.q15, job.lookup.lut_f, job.sample_shift, job.inter_shift, rays);
+#if VF_LIGHTING
+    job.shading = vfi_lit(r) ? &r->shading : NULL;
+#endif
+    job.plain = !(VF_LIGHTING && job.shading) &&
+                vfi_plain_path(job.bilinear, job.lookup.q15, job.lookup.lut_f, job.sample_shift, job.inter_shift, rays);
     const vfi_runs_t *runs = &r->runs[f->k_axis];
     const bool partial = VF_PARTIAL_SLABS && r->params.partial_slabs; /* constant 0 in builds without them */
     job.ni = l->ni;

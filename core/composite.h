@@ -84,6 +84,7 @@ typedef struct row_job {
     uint32_t *front_buf, *back_buf;
     int32_t front_shift, back_shift;
     const vfi_demand_t *demand;        /* the 2D table is built as it is read (tables.h), or NULL */
+    const vfi_shading_t *shading;      /* lit frames (shade.h), which take the general loops; else NULL */
 } row_job_t;
 
 void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass);
@@ -222,8 +223,51 @@ static VF_ALWAYS_INLINE void vfi_segment_preint1(const row_job_t *job, uint32_t 
         vfi_correct(c, seg);
 }
 
+/* The 2D entry of a lit slab and its front-weighted values (docs/algorithm.md, section 7), looked up and corrected
+ * alike. */
+static VF_ALWAYS_INLINE void vfi_segment_preint1_lit(const row_job_t *job, uint32_t pos_f, uint32_t pos_b,
+                                                    uint32_t seg[4], uint32_t lit[4])
+{
+    const vfi_lookup_ctx_t *c = &job->lookup;
+    const size_t n = c->n;
+    if (job->bilinear) {
+        uint32_t i, fi, j, fj, w[4], e[4][4], l[4][4];
+        vfi_split_position(c->n, pos_f, &i, &fi);
+        vfi_split_position(c->n, pos_b, &j, &fj);
+        vfi_weights(fi, fj, w);
+        const size_t at[4] = {i * n + j, (i + 1) * n + j, i * n + j + 1, (i + 1) * n + j + 1};
+        for (int k = 0; k < 4; k++) {
+            vfi_fetch(c, at[k], e[k]);
+            vfi_fetch_from(c->lit_q15, c->lit_u8, at[k], l[k]);
+        }
+        for (int k = 0; k < 4; k++) {
+            seg[k] = (e[0][k] * w[0] + e[1][k] * w[1] + e[2][k] * w[2] + e[3][k] * w[3] + 0x8000u) >> 16;
+            lit[k] = (l[0][k] * w[0] + l[1][k] * w[1] + l[2][k] * w[2] + l[3][k] * w[3] + 0x8000u) >> 16;
+        }
+    } else {
+        vfi_fetch(c, pos_f * n + pos_b, seg);
+        vfi_fetch_from(c->lit_q15, c->lit_u8, pos_f * n + pos_b, lit);
+    }
+    if (c->lut_f)
+        vfi_correct_lit(c, seg, lit);
+}
+
+/* The shade of one voxel (preclass lights each of a sample's four voxels with its own). */
+static inline vfi_shade_t vfi_voxel_shade(const vfi_shading_t *sh, const uint8_t *p)
+{
+    const size_t at = (size_t)(p - sh->slices);
+    vfi_shade_t out = {VFI_SHADE_ONE, 0, 32768u};
+    if (sh->shade) {
+        const uint32_t e = sh->shade[sh->codes[at]];
+        out.d = vfi_shade_diffuse(e), out.s = vfi_shade_specular(e);
+    }
+    if (sh->ramp)
+        out.g = sh->ramp[sh->magnitudes[at]];
+    return out;
+}
+
 /* A slice sample's entry (point), or the interpolation of its four voxels' entries (preclass): the sample at p with
- * fractions fx, fy. */
+ * fractions fx, fy; lit when the job is (each of preclass's voxels with its own shade). */
 static VF_ALWAYS_INLINE void vfi_segment_order0(const row_job_t *job, const uint8_t *p, uint32_t fx, uint32_t fy,
                                       bool preclass, uint32_t seg[4])
 {
@@ -235,6 +279,11 @@ static VF_ALWAYS_INLINE void vfi_segment_order0(const row_job_t *job, const uint
         vfi_fetch(c, entry[p[1]], e[1]);
         vfi_fetch(c, entry[p[job->row]], e[2]);
         vfi_fetch(c, entry[p[job->row + 1]], e[3]);
+        if (VF_LIGHTING && job->shading) {
+            const uint8_t *voxel[4] = {p, p + 1, p + job->row, p + job->row + 1};
+            for (int k = 0; k < 4; k++) /* lit, then interpolated and corrected as unlit (docs/algorithm.md, 7) */
+                vfi_light_point(e[k], vfi_voxel_shade(job->shading, voxel[k]));
+        }
         vfi_lerp(e[0], e[1], fx);
         vfi_lerp(e[2], e[3], fx);
         vfi_lerp(e[0], e[2], fy);
@@ -251,6 +300,8 @@ static VF_ALWAYS_INLINE void vfi_segment_order0(const row_job_t *job, const uint
     }
     if (c->lut_f)
         vfi_correct(c, seg);
+    if (VF_LIGHTING && job->shading && !preclass)
+        vfi_light_point(seg, vfi_sample_shade(job->shading, p, job->row, fx, fy));
 }
 
 /* Pixel u (at px) blended with 16-bit table entry e, and closed in the skip links next once opaque: the plain

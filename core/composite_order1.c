@@ -127,11 +127,23 @@ static VF_ALWAYS_INLINE uint32_t span_general_body(const row_job_t *job, uint32_
             i = one_ray ? u - (uint32_t)fr->cu : vfi_column(fr, job->step, u, &fx);
             pos_f = scale * vfi_table_position(job, job->row_data + i, one_ray ? fr->fx : fx, job->front_fy);
         }
-        i = one_ray ? u - (uint32_t)bk->cu : vfi_column(bk, job->step, u, &fx);
-        uint32_t pos_b = vfi_table_position(job, job->back_row_data + i, one_ray ? bk->fx : fx, job->back_fy);
+        uint32_t fx_b, i_b = one_ray ? u - (uint32_t)bk->cu : vfi_column(bk, job->step, u, &fx_b);
+        fx_b = one_ray ? bk->fx : fx_b;
+        uint32_t pos_b = vfi_table_position(job, job->back_row_data + i_b, fx_b, job->back_fy);
         job->back_buf[u - (uint32_t)job->back_shift] = pos_b * scale;
         uint32_t seg[4];
-        vfi_segment_preint1(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg);
+        if (VF_LIGHTING && job->shading) { /* lit: both samples' shades, the front's taken again from its voxels */
+            uint32_t lit[4];
+            vfi_segment_preint1_lit(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg, lit);
+            i = one_ray ? u - (uint32_t)fr->cu : vfi_column(fr, job->step, u, &fx);
+            const vfi_shade_t front = vfi_sample_shade(job->shading, job->row_data + i, job->row,
+                                                       one_ray ? fr->fx : fx, job->front_fy);
+            const vfi_shade_t back = vfi_sample_shade(job->shading, job->back_row_data + i_b, job->row, fx_b,
+                                                      job->back_fy);
+            vfi_light_slab(seg, lit, front, back);
+        } else {
+            vfi_segment_preint1(job, job->bilinear ? pos_f : pos_f / n, pos_b, seg);
+        }
         if (vfi_composite_segment(job, job->pixels + (size_t)u * 4, seg))
             job->next[u] = (uint16_t)(u + 1);
     }

@@ -15,7 +15,7 @@
  * snapped, as the reference snaps them) for the two renderers to cover the same pixels.
  */
 #include "fixmath.h"
-#include "volfix.h"
+#include "shade.h"
 
 #define ONE_Q32 (INT64_C(1) << 32)
 
@@ -28,6 +28,15 @@ static void rotation(const vf_view_t *view, mat3_t *r);
 static void matmul_q30(const mat3_t *a, const mat3_t *b, mat3_t *out);
 static int principal_axis(const mat3_t *r, const uint32_t sp[3]);
 static int64_t clamp_shear(int64_t s_q32);
+
+void vfi_view_rotation(const vf_view_t *view, int32_t r_q30[3][3])
+{
+    mat3_t r;
+    rotation(view, &r);
+    for (int row = 0; row < 3; row++)
+        for (int col = 0; col < 3; col++)
+            r_q30[row][col] = r.m[row][col];
+}
 
 vf_status_t vf_factor(vf_factor_t *f, const vf_volume_t *vol, const vf_view_t *view, uint32_t out_w,
                       uint32_t out_h)

@@ -20,6 +20,12 @@ static bool on_demand(const vf_renderer_t *r);
 #endif
 static bool tables_complete(const vf_renderer_t *r);
 static inline vfi_table_out_t table_out(const vf_renderer_t *r);
+static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol);
+static size_t lit_table_bytes(const vf_params_t *p);
+#if VF_LIGHTING
+static bool lighting_alloc(vf_renderer_t *r, vf_arena_t *arena);
+static void update_shading(vf_renderer_t *r, const vf_view_t *view);
+#endif
 
 void vf_params_default(vf_params_t *p)
 {
@@ -37,6 +43,22 @@ void vf_params_default(vf_params_t *p)
     p->intermediate_bits = 16;
     p->warp_bits = 16;
     p->background[0] = p->background[1] = p->background[2] = 0;
+    p->lighting = false;
+    p->normal_bits = 14;
+    p->shade_lookup = VF_LOOKUP_BILINEAR;
+}
+
+void vf_lighting_default(vf_lighting_t *l)
+{
+    if (!l)
+        return;
+    vfi_zero(l, sizeof *l);
+    l->shade = true;
+    l->light_count = 1; /* a headlight: azimuth and elevation 0 */
+    l->ka = 6554;       /* 0.1 */
+    l->kd = 45875;      /* 0.7 */
+    l->ks = 13107;      /* 0.2 */
+    l->shininess = 10;
 }
 
 vf_status_t vf_renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, size_t *bytes)
@@ -55,7 +77,7 @@ vf_status_t vf_renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, size
     size_t total = VFI_ALIGN + vfi_arena_block(sizeof(vf_renderer_t));
     for (int a = 0; a < 3; a++)
         total += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
-    total += vfi_classify_bytes(n) + table_bytes(p);
+    total += vfi_classify_bytes(n) + table_bytes(p) + lit_table_bytes(p) + normals_bytes(p, vol);
     total += vfi_arena_block(sizeof(uint16_t) * 4 * intermediate_pixels(vol->dims, p->rays, &w, &ni));
     *bytes = total;
     return VF_OK;
@@ -101,6 +123,10 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     if (s != VF_OK || !r->slices[0] || !r->slices[1] || !r->slices[2] || !r->table ||
         (lut && (!r->lut_f || !r->lut_g)) || (has_view_table(p) && !r->view_table) || !r->intermediate)
         return VF_ERR_NOMEM; /* the caller's arena is theirs to reset; *out stays NULL */
+#if VF_LIGHTING
+    if (p->lighting && !lighting_alloc(r, arena))
+        return VF_ERR_NOMEM;
+#endif
     r->runs_mark = arena->used;
 
     r->memory.renderer = vfi_arena_block(sizeof *r);
@@ -109,6 +135,8 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     r->memory.classify = vfi_classify_bytes(n);
     r->memory.tables = table_bytes(p);
     r->memory.intermediate = vfi_arena_block(sizeof(uint16_t) * 4 * r->intermediate_max);
+    r->memory.tables += lit_table_bytes(p);
+    r->memory.normals = normals_bytes(p, vol);
     *out = r;
     return VF_OK;
 }
@@ -136,6 +164,30 @@ vf_status_t vf_renderer_set_tf(vf_renderer_t *r, const vf_tf_t *tf)
     r->have_tf = true;
     r->tf_generation++;
     return r->have_window ? encode_runs(r) : VF_OK;
+}
+
+vf_status_t vf_renderer_set_lighting(vf_renderer_t *r, const vf_lighting_t *l)
+{
+    if (!r)
+        return VF_ERR_NULL;
+#if VF_LIGHTING
+    if (!r->params.lighting)
+        return VF_ERR_UNSUPPORTED;
+    if (l && (l->light_count < 1 || l->light_count > VF_MAX_LIGHTS || l->shininess < 1 || l->shininess > 255 ||
+              (l->gradient_hi <= l->gradient_lo && (l->gradient_lo || l->gradient_hi))))
+        return VF_ERR_ARG;
+    r->have_frame = false; /* a frame begun before has the old shade table */
+    r->lit = l != NULL;
+    if (l) {
+        r->lighting = *l;
+        vfi_gradient_ramp(l->gradient_lo, l->gradient_hi, r->ramp);
+    }
+    r->lighting_generation++;
+    return VF_OK;
+#else
+    (void)l;
+    return VF_ERR_UNSUPPORTED;
+#endif
 }
 
 size_t vf_renderer_needed_bytes(const vf_renderer_t *r)
@@ -172,6 +224,10 @@ vf_status_t vf_renderer_begin(vf_renderer_t *r, const vf_frame_t *frame)
     if (s != VF_OK)
         return s;
     update_tables(r, parts, frame->one_thread);
+#if VF_LIGHTING
+    if (r->lit)
+        update_shading(r, &frame->view);
+#endif
     if (VF_MAX_TABLE_PARTS > 1)
         r->frame_parts = parts;
     r->have_frame = true;
@@ -304,6 +360,11 @@ static vf_status_t check_params(const vf_params_t *p)
      * too few bits of a nearly opaque slab's transmittance for a part of it (docs/algorithm.md, section 4c) */
     if (p->rays > VF_MAX_RAYS || (p->partial_slabs && (!VF_PARTIAL_SLABS || p->correction == VF_CORRECTION_LUT)))
         return VF_ERR_UNSUPPORTED;
+    if (p->normal_bits < 8 || p->normal_bits > 16 || p->normal_bits % 2 || (unsigned)p->shade_lookup >= VF_LOOKUP_COUNT)
+        return VF_ERR_ARG;
+    /* lighting in builds without it, and lighting with partial slabs: docs/algorithm.md, section 7 */
+    if (p->lighting && (!VF_LIGHTING || p->partial_slabs))
+        return VF_ERR_UNSUPPORTED;
     return VF_OK;
 }
 
@@ -362,8 +423,80 @@ static size_t table_bytes(const vf_params_t *p)
 static bool has_view_table(const vf_params_t *p)
 {
     return VF_VIEW_TABLE && p->correction == VF_CORRECTION_LUT && p->lookup == VF_LOOKUP_NEAREST &&
-           p->mode != VF_MODE_PRECLASS && p->table_bits != 8 && p->table_size <= 512;
+           p->mode != VF_MODE_PRECLASS && p->table_bits != 8 && p->table_size <= 512 && !p->lighting;
 }
+
+/* The front-weighted table beside preint1's 2D table, in its format (docs/algorithm.md, section 7). */
+static size_t lit_table_bytes(const vf_params_t *p)
+{
+    if (!VF_LIGHTING || !p->lighting || p->mode != VF_MODE_PREINT1)
+        return 0;
+    return vfi_arena_block(table_entries(p) * 4 * table_value_bytes(p));
+}
+
+/* Normal codes and magnitudes per copy, the codes' unit normals, the shade table and the ramp. */
+static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol)
+{
+    if (!VF_LIGHTING || !p->lighting)
+        return 0;
+    const uint32_t codes = vfi_normal_code_count(vfi_normal_levels(p->normal_bits));
+    size_t bytes = 0;
+    for (int a = 0; a < 3; a++)
+        bytes += vfi_arena_block(sizeof(uint16_t) * vfi_slices_bytes(vol->dims, a)) +
+                 vfi_arena_block(vfi_slices_bytes(vol->dims, a));
+    return bytes + vfi_arena_block(sizeof(int32_t) * 3 * codes) + vfi_arena_block(sizeof(uint32_t) * codes) +
+           vfi_arena_block(sizeof(uint16_t) * 256);
+}
+
+#if VF_LIGHTING
+/* The lighting's memory, the normals made from the volume, and the default lighting. False when short. */
+static bool lighting_alloc(vf_renderer_t *r, vf_arena_t *arena)
+{
+    const vf_params_t *p = &r->params;
+    const uint32_t levels = vfi_normal_levels(p->normal_bits);
+    r->code_count = vfi_normal_code_count(levels);
+    for (int a = 0; a < 3; a++) {
+        r->codes[a] = vfi_arena_alloc(arena, sizeof(uint16_t) * vfi_slices_bytes(r->volume.dims, a));
+        r->magnitudes[a] = vfi_arena_alloc(arena, vfi_slices_bytes(r->volume.dims, a));
+        if (!r->codes[a] || !r->magnitudes[a])
+            return false;
+    }
+    r->unit = vfi_arena_alloc(arena, sizeof(int32_t) * 3 * r->code_count);
+    r->shade = vfi_arena_alloc(arena, sizeof(uint32_t) * r->code_count);
+    r->ramp = vfi_arena_alloc(arena, sizeof(uint16_t) * 256);
+    if (p->mode == VF_MODE_PREINT1)
+        r->lit_table = vfi_arena_alloc(arena, table_entries(p) * 4 * table_value_bytes(p));
+    if (!r->unit || !r->shade || !r->ramp || (p->mode == VF_MODE_PREINT1 && !r->lit_table))
+        return false;
+    vfi_normals_build(&r->volume, levels, r->codes, r->magnitudes);
+    vfi_normals_decode(levels, r->unit);
+    vf_lighting_t l;
+    vf_lighting_default(&l);
+    return vf_renderer_set_lighting(r, &l) == VF_OK;
+}
+
+/* The shade table for this view's rotation and the lighting, when either changed; and what the bands read. */
+static void update_shading(vf_renderer_t *r, const vf_view_t *view)
+{
+    const bool same_view = r->shade_view.azimuth == view->azimuth && r->shade_view.elevation == view->elevation &&
+                           r->shade_view.roll == view->roll;
+    if (r->lighting.shade && (!r->shade_valid || !same_view || r->shade_generation != r->lighting_generation)) {
+        int32_t rot[3][3];
+        vfi_view_rotation(view, rot);
+        vfi_shade_table(rot, &r->lighting, r->unit, r->code_count, r->shade);
+        r->shade_view = *view;
+        r->shade_generation = r->lighting_generation;
+        r->shade_valid = true;
+    }
+    const int k = r->factor.k_axis;
+    r->shading.shade = r->lighting.shade ? r->shade : NULL;
+    r->shading.ramp = r->lighting.gradient_hi ? r->ramp : NULL;
+    r->shading.slices = r->slices[k];
+    r->shading.codes = r->codes[k];
+    r->shading.magnitudes = r->magnitudes[k];
+    r->shading.bilinear = r->params.shade_lookup == VF_LOOKUP_BILINEAR;
+}
+#endif
 
 /* The intermediate image is at most (n_i + n_k - 1) x (n_j + n_k - 1) voxels for any view, as |shear| <= 1, and with
  * rays R per voxel R (n - 1) + 1 pixels a side (vf_factor_rays). 0 when a side would exceed VF_MAX_INTERMEDIATE. */
@@ -429,6 +562,8 @@ static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
     r->lookup.q15 = view ? r->view_table : out.q15;
     r->lookup.u8 = out.u8;
     r->lookup.n = r->params.table_size;
+    r->lookup.lit_q15 = out.lit_q15; /* set only for lit preint1 frames (table_out) */
+    r->lookup.lit_u8 = out.lit_u8;
     r->lookup.lut_f = lut && !view ? r->lut_f : NULL;
     r->lookup.lut_g = lut && !view ? r->lut_g : NULL;
 #if VF_TABLE_ON_DEMAND
@@ -438,6 +573,13 @@ static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
 #endif
     bool build = !r->tables_valid || !tables_complete(r) || r->tables_generation != r->tf_generation ||
                  r->tables_slab_q16 != table_slab;
+#if VF_LIGHTING
+    /* a lit frame needs the front-weighted table too, which unlit frames leave as it was */
+    const bool lit_table = out.lit_q15 || out.lit_u8;
+    build = build || (lit_table && !r->lit_table_valid);
+    if (build)
+        r->lit_table_valid = lit_table;
+#endif
 #if VF_TABLE_ON_DEMAND
     build = build || (r->table_unbuilt && !demand); /* a frame that needs every entry after one built as read */
     if (build)
@@ -485,7 +627,7 @@ static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
 static bool on_demand(const vf_renderer_t *r)
 {
     const vf_params_t *p = &r->params;
-    return p->mode == VF_MODE_PREINT1 && p->correction == VF_CORRECTION_REBUILD && !p->partial_slabs &&
+    return p->mode == VF_MODE_PREINT1 && p->correction == VF_CORRECTION_REBUILD && !p->partial_slabs && !vfi_lit(r) &&
            vfi_plain_path(p->lookup == VF_LOOKUP_BILINEAR, r->lookup.q15, r->lookup.lut_f, p->sample_bits,
                           16 - p->intermediate_bits, p->rays);
 }
@@ -508,5 +650,12 @@ static inline vfi_table_out_t table_out(const vf_renderer_t *r)
     out.q15 = bits16 ? r->table : NULL;
     out.u8 = bits16 ? NULL : r->table;
     out.grid_bits = r->params.table_bits == 10 || r->params.table_bits == 12 ? r->params.table_bits : 0;
+    out.lit_q15 = NULL, out.lit_u8 = NULL;
+#if VF_LIGHTING
+    if (r->lit && r->lit_table) { /* preint1 with lighting on */
+        out.lit_q15 = bits16 ? r->lit_table : NULL;
+        out.lit_u8 = bits16 ? NULL : r->lit_table;
+    }
+#endif
     return out;
 }

@@ -10,7 +10,9 @@
 #define VF_RENDERER_H
 
 #include "classify.h"
+#include "normals.h"
 #include "runs.h"
+#include "shade.h"
 #include "slices.h"
 #include "tables.h"
 #include "volfix.h"
@@ -59,6 +61,27 @@ struct vf_renderer {
 #endif
     vfi_lookup_ctx_t lookup;
 
+#if VF_LIGHTING
+    /* Lighting (params.lighting): the normals, made at create; the lighting asked for; the shade table, remade
+     * when the view's rotation or the lighting changes; the front-weighted table (and its view table) beside the
+     * 2D table, built with it. */
+    uint16_t *codes[3];
+    uint8_t *magnitudes[3];
+    int32_t *unit;           /* [codes][3] unit normals, Q1.30 */
+    uint32_t code_count;
+    uint32_t *shade;         /* [code_count] */
+    uint16_t *ramp;          /* [256] gradient-opacity factors */
+    void *lit_table;
+    uint16_t *lit_view_table;
+    bool lit;                /* frames are lit (vf_renderer_set_lighting), else as a renderer without lighting */
+    vf_lighting_t lighting;
+    uint32_t lighting_generation, shade_generation; /* the shade table is for lighting_generation ... */
+    vf_view_t shade_view;                           /* ... and this view's rotation */
+    bool shade_valid;
+    bool lit_table_valid;    /* the front-weighted table is of the 2D table's transfer function and length */
+    vfi_shading_t shading;   /* what the frame's bands read (its copy's arrays set per frame) */
+#endif
+
     vf_factor_t factor;
     bool have_frame;
     uint16_t *intermediate;  /* [int_w * int_h * 4] r, g, b, a in Q1.15 */
@@ -76,6 +99,17 @@ static inline bool vfi_plain_path(bool bilinear, const uint16_t *q15, const uint
                                   uint32_t inter_shift, uint32_t rays)
 {
     return !bilinear && q15 && !lut_f && !sample_shift && !inter_shift && rays == 1;
+}
+
+/* Whether frames are lit (section 7 of docs/algorithm.md), which takes the general compositing loops. */
+static inline bool vfi_lit(const vf_renderer_t *r)
+{
+#if VF_LIGHTING
+    return r->lit;
+#else
+    (void)r;
+    return false;
+#endif
 }
 
 /* composite.c */

@@ -12,16 +12,21 @@
 
 /* Entry e (index into the table, in entries) as Q1.15. An 8-bit value v is v / 255: (257 v + 1) / 2 is
  * v * 32768 / 255 within half an LSB, and 255 gives exactly 32768. */
-static inline void vfi_fetch(const vfi_lookup_ctx_t *c, size_t e, uint32_t out[4])
+static inline void vfi_fetch_from(const uint16_t *q15, const uint8_t *u8, size_t e, uint32_t out[4])
 {
-    if (c->q15) {
-        const uint16_t *p = c->q15 + e * 4;
+    if (q15) {
+        const uint16_t *p = q15 + e * 4;
         out[0] = p[0], out[1] = p[1], out[2] = p[2], out[3] = p[3];
     } else {
-        const uint8_t *p = c->u8 + e * 4;
+        const uint8_t *p = u8 + e * 4;
         for (int k = 0; k < 4; k++)
             out[k] = (257u * p[k] + 1u) >> 1;
     }
+}
+
+static inline void vfi_fetch(const vfi_lookup_ctx_t *c, size_t e, uint32_t out[4])
+{
+    vfi_fetch_from(c->q15, c->u8, e, out);
 }
 
 /* x = (1 - f) x + f y per channel, f in Q0.16 (up to 65536); values at most 1.0 (32768), so the sum of the two
@@ -78,6 +83,46 @@ static inline void vfi_correct(const vfi_lookup_ctx_t *c, uint32_t seg[4])
     for (int n = 0; n < 3; n++)
         seg[n] = vfi_lut_colour(seg[n], g);
     seg[3] = fa;
+}
+
+/* The same for a slab's entry and its front-weighted values (D_f r, g, b and S_f: all scale with the colour). */
+static inline void vfi_correct_lit(const vfi_lookup_ctx_t *c, uint32_t seg[4], uint32_t lit[4])
+{
+    uint32_t fa;
+    const uint64_t g = vfi_lut_at(c->lut_f, c->lut_g, seg[3], &fa);
+    for (int n = 0; n < 3; n++)
+        seg[n] = vfi_lut_colour(seg[n], g);
+    for (int n = 0; n < 4; n++)
+        lit[n] = vfi_lut_colour(lit[n], g);
+    seg[3] = fa;
+}
+
+/* Lighting (docs/algorithm.md, section 7). A sample's or voxel's segment lit with its shade: C' = min(L_d C + L_s a,
+ * a) per channel (L_d, L_s Q2.14: the sum stays below 2^32), then times the gradient factor g (Q1.15). */
+static inline void vfi_light_point(uint32_t seg[4], vfi_shade_t sh)
+{
+    for (int n = 0; n < 3; n++) {
+        const uint32_t c = (sh.d * seg[n] + sh.s * seg[3] + 0x2000u) >> 14;
+        seg[n] = c < seg[3] ? c : seg[3];
+    }
+    if (sh.g != 32768u)
+        for (int n = 0; n < 4; n++)
+            seg[n] = (seg[n] * sh.g + 0x4000u) >> 15;
+}
+
+/* A slab's entry (seg) and front-weighted values (lit) lit with its front and back samples' shades:
+ * C' = L_db C + (L_df - L_db) D_f + L_sb a + (L_sf - L_sb) S_f, clamped to [0, a], then times (g_f + g_b) / 2. */
+static inline void vfi_light_slab(uint32_t seg[4], const uint32_t lit[4], vfi_shade_t f, vfi_shade_t b)
+{
+    const int64_t dd = (int64_t)f.d - b.d, ds = (int64_t)f.s - b.s;
+    for (int n = 0; n < 3; n++) {
+        const int64_t c = ((int64_t)b.d * seg[n] + dd * lit[n] + (int64_t)b.s * seg[3] + ds * lit[3] + 0x2000) >> 14;
+        seg[n] = c < 0 ? 0 : c > seg[3] ? seg[3] : (uint32_t)c;
+    }
+    const uint32_t g = (f.g + b.g + 1) >> 1;
+    if (g != 32768u)
+        for (int n = 0; n < 4; n++)
+            seg[n] = (seg[n] * g + 0x4000u) >> 15;
 }
 
 /* Front to back: C += (1 - A) C_seg, A += (1 - A) a_seg. True when the pixel became opaque. */

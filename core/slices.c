@@ -9,7 +9,6 @@
 
 static void window_into_z(const vf_volume_t *vol, vf_window_t w, uint8_t *out);
 static void transpose_from_z(const uint8_t *z, const uint32_t dims[3], int k_axis, uint8_t *out);
-static void pad(uint8_t *copy, const vfi_layout_t *l);
 
 void vfi_layout(const uint32_t dims[3], int k_axis, vfi_layout_t *l)
 {
@@ -76,38 +75,63 @@ static void window_into_z(const vf_volume_t *vol, vf_window_t w, uint8_t *out)
                 }
             }
         }
-    pad(out, &l);
+    vfi_pad_copy(out, &l, 1);
 }
 
 /* Gather the copy for principal axis k_axis from the z copy: element (i, j, k) is object voxel p with
- * p[i_axis] = i, p[j_axis] = j, p[k_axis] = k. */
-static void transpose_from_z(const uint8_t *z, const uint32_t dims[3], int k_axis, uint8_t *out)
+ * p[i_axis] = i, p[j_axis] = j, p[k_axis] = k. Elements of 1 or 2 bytes (elem), each a body of its own so that
+ * the copy of the slices, which runs on every window change, moves bytes. */
+static VF_ALWAYS_INLINE void transpose_body(const void *z, const uint32_t dims[3], int k_axis, void *out, size_t elem)
 {
     vfi_layout_t lz, l;
     vfi_layout(dims, 2, &lz);
     vfi_layout(dims, k_axis, &l);
-    size_t stride_obj[3] = {1, lz.row, lz.slice}; /* address step in the z copy per object axis */
+    size_t stride_obj[3] = {1, lz.row, lz.slice}; /* element step in the z copy per object axis */
     size_t si = stride_obj[l.i_axis], sj = stride_obj[l.j_axis], sk = stride_obj[k_axis];
     for (uint32_t k = 0; k < l.nk; k++)
         for (uint32_t j = 0; j < l.nj; j++) {
-            uint8_t *row = out + (size_t)k * l.slice + (size_t)j * l.row;
-            const uint8_t *src = z + k * sk + j * sj;
-            for (uint32_t i = 0; i < l.ni; i++)
-                row[i] = src[i * si];
+            const size_t dst = (size_t)k * l.slice + (size_t)j * l.row, src = k * sk + j * sj;
+            if (elem == 1) {
+                uint8_t *row = (uint8_t *)out + dst;
+                const uint8_t *from = (const uint8_t *)z + src;
+                for (uint32_t i = 0; i < l.ni; i++)
+                    row[i] = from[i * si];
+            } else {
+                uint16_t *row = (uint16_t *)out + dst;
+                const uint16_t *from = (const uint16_t *)z + src;
+                for (uint32_t i = 0; i < l.ni; i++)
+                    row[i] = from[i * si];
+            }
         }
-    pad(out, &l);
+    vfi_pad_copy(out, &l, elem);
+}
+
+static void transpose_from_z(const uint8_t *z, const uint32_t dims[3], int k_axis, uint8_t *out)
+{
+    transpose_body(z, dims, k_axis, out, 1);
+}
+
+void vfi_transpose_copy(const void *z, const uint32_t dims[3], int k_axis, void *out, size_t elem)
+{
+    if (elem == 1)
+        transpose_body(z, dims, k_axis, out, 1);
+    else
+        transpose_body(z, dims, k_axis, out, 2);
 }
 
 /* The extra column and row repeat the last real ones. */
-static void pad(uint8_t *copy, const vfi_layout_t *l)
+void vfi_pad_copy(void *copy, const vfi_layout_t *l, size_t elem)
 {
     for (uint32_t k = 0; k < l->nk; k++) {
-        uint8_t *slice = copy + (size_t)k * l->slice;
-        for (uint32_t j = 0; j < l->nj; j++)
-            slice[(size_t)j * l->row + l->ni] = slice[(size_t)j * l->row + l->ni - 1];
-        const uint8_t *last = slice + (size_t)(l->nj - 1) * l->row;
-        uint8_t *extra = slice + (size_t)l->nj * l->row;
-        for (uint32_t i = 0; i < l->row; i++)
-            extra[i] = last[i];
+        unsigned char *slice = (unsigned char *)copy + (size_t)k * l->slice * elem;
+        for (uint32_t j = 0; j < l->nj; j++) {
+            unsigned char *row = slice + (size_t)j * l->row * elem;
+            for (size_t b = 0; b < elem; b++)
+                row[l->ni * elem + b] = row[(l->ni - 1) * elem + b];
+        }
+        const unsigned char *last = slice + (size_t)(l->nj - 1) * l->row * elem;
+        unsigned char *extra = slice + (size_t)l->nj * l->row * elem;
+        for (size_t b = 0; b < (size_t)l->row * elem; b++)
+            extra[b] = last[b];
     }
 }

@@ -22,6 +22,13 @@ size_t vfi_slices_bytes(const uint32_t dims[3], int k_axis);
  * for axes 0 and 1. copies[a] must hold vfi_slices_bytes(dims, a). */
 void vfi_slices_build(const vf_volume_t *volume, vf_window_t window, uint8_t *const copies[3]);
 
+/* The copy for principal axis k_axis of a per-voxel array whose z copy is z (elements of elem = 1 or 2 bytes, in
+ * the slices' layout), padded like the slices: the normals' copies are made as the slices' are. */
+void vfi_transpose_copy(const void *z, const uint32_t dims[3], int k_axis, void *out, size_t elem);
+
+/* The extra column and row of every slice of a copy (elements of elem bytes) set to repeat the last real ones. */
+void vfi_pad_copy(void *copy, const vfi_layout_t *l, size_t elem);
+
 /* The window's mapping of one raw value (docs/algorithm.md, section 1). */
 uint8_t vfi_window_scalar(int32_t raw, vf_window_t window);
 

@@ -16,6 +16,8 @@ typedef struct vfi_table_out {
     uint16_t *q15;
     uint8_t *u8;
     uint32_t grid_bits;
+    uint16_t *lit_q15; /* the front-weighted table (docs/algorithm.md, section 7) in the same format, or both NULL */
+    uint8_t *lit_u8;
 } vfi_table_out_t;
 
 /* What compositing reads: one table (point or 2D) in one of the two formats, and the lut correction. */
@@ -25,6 +27,8 @@ typedef struct vfi_lookup_ctx {
     uint32_t n;            /* entries per table axis */
     const uint16_t *lut_f; /* lut correction: F(a) at a = k / 1024, Q1.15, or NULL for none */
     const uint32_t *lut_g; /* G(a) = F(a) / a at the same knots, Q16.16 */
+    const uint16_t *lit_q15; /* lighting: the front-weighted table D_f r, g, b and S_f, as q15 and u8; else NULL */
+    const uint8_t *lit_u8;
 } vfi_lookup_ctx_t;
 
 #define VFI_LUT_KNOTS 1025

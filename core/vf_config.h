@@ -65,6 +65,12 @@
 #define VF_LOOK_AHEAD 1
 #endif
 
+/* Lighting (docs/algorithm.md, section 7): normals, shade tables, lit compositing and the front-weighted
+ * pre-integrated table. 0 leaves it out, and a renderer asked for it gets VF_ERR_UNSUPPORTED. */
+#ifndef VF_LIGHTING
+#define VF_LIGHTING 1
+#endif
+
 /* Most control points in a transfer function. */
 #ifndef VF_MAX_TF_POINTS
 #define VF_MAX_TF_POINTS 1024

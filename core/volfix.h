@@ -136,6 +136,15 @@ typedef struct vf_params {
     bool partial_slabs;         /* false: where a ray crosses a side face between two slices, a slab counts
                                  * whole or not at all (section 4); true: its part inside the box (4c) */
     uint16_t background[3];     /* unorm16 RGB behind the volume (black) */
+    /* Lighting (docs/algorithm.md, section 7). true: the renderer keeps a normal code and an 8-bit gradient
+     * magnitude per voxel (one copy per principal axis, like the slices: 3 (normal_bits / 8 rounded up) + 3
+     * bytes a voxel), the front-weighted pre-integrated table and a shade table, and lights its frames with
+     * vf_lighting_default until vf_renderer_set_lighting says otherwise. false (the default): none of that. */
+    bool lighting;
+    uint32_t normal_bits;       /* bits of a normal code, 8, 10, 12, 14 (14) or 16: 2^(B/2) - 1 levels a side of
+                                 * the octahedron (section 7) */
+    vf_lookup_t shade_lookup;   /* a sample's shade: its nearest voxel's, or its four voxels' interpolated
+                                 * (bilinear, the default) */
     /* Precision of the core's own arithmetic, for studies of how many bits each stage needs (docs/algorithm.md,
      * section 6). The defaults are the full precision; the double reference ignores these. */
     uint32_t sample_bits;       /* 0: samples exact; 4..16: rounded to that many fraction bits before lookup */
@@ -144,6 +153,26 @@ typedef struct vf_params {
 } vf_params_t;
 
 void vf_params_default(vf_params_t *params);
+
+/* How frames are lit (docs/algorithm.md, section 7), for a renderer created with params.lighting. */
+#define VF_MAX_LIGHTS 2
+typedef struct vf_light {
+    int32_t azimuth, elevation; /* BAU, relative to the viewer: 0, 0 is a headlight; positive azimuth lights from
+                                 * the right, positive elevation from above */
+} vf_light_t;
+
+typedef struct vf_lighting {
+    bool shade;                       /* Blinn-Phong shading; false: unlit colours (gradient opacity still applies) */
+    uint32_t light_count;             /* 1..VF_MAX_LIGHTS white directional lights */
+    vf_light_t lights[VF_MAX_LIGHTS];
+    uint16_t ka, kd, ks;              /* ambient, diffuse, specular, unorm16 (65535 = 1.0) */
+    uint16_t shininess;               /* the specular exponent, 1..255 */
+    uint8_t gradient_lo, gradient_hi; /* opacity times a ramp in the 8-bit gradient magnitude, from 0 at lo to 1 at
+                                       * hi (lo < hi); 0, 0: no gradient opacity */
+} vf_lighting_t;
+
+/* Shading on, one headlight, ka 0.1, kd 0.7, ks 0.2, shininess 10 (VTK's defaults), no gradient opacity. */
+void vf_lighting_default(vf_lighting_t *lighting);
 const char *vf_mode_name(vf_mode_t mode);
 const char *vf_lookup_name(vf_lookup_t lookup);
 const char *vf_correction_name(vf_correction_t correction);
@@ -220,7 +249,8 @@ typedef struct vf_memory {
     size_t slices;       /* 8-bit scalar slices, one copy per principal axis */
     size_t runs;         /* run-length encoding of the visible cells, per principal axis */
     size_t classify;     /* per-entry extinction and colour, visibility prefix */
-    size_t tables;       /* point table and (preint1) the 2D table */
+    size_t tables;       /* point table and (preint1) the 2D table, and with lighting its front-weighted table */
+    size_t normals;      /* lighting: normal codes and gradient magnitudes, per principal axis; the shade table */
     size_t intermediate; /* the intermediate image at its largest */
     size_t total;        /* arena bytes in use, alignment included */
 } vf_memory_t;
@@ -233,6 +263,11 @@ vf_status_t vf_renderer_create(vf_renderer_t **renderer, const vf_params_t *para
                                vf_arena_t *arena);
 vf_status_t vf_renderer_set_window(vf_renderer_t *renderer, vf_window_t window);
 vf_status_t vf_renderer_set_tf(vf_renderer_t *renderer, const vf_tf_t *tf);
+
+/* Light the frames that follow (the renderer must have been created with params.lighting: else
+ * VF_ERR_UNSUPPORTED), or NULL: unlit, the pixels of a renderer without lighting to the bit. VF_ERR_ARG for a
+ * light count, shininess or gradient ramp out of range. */
+vf_status_t vf_renderer_set_lighting(vf_renderer_t *renderer, const vf_lighting_t *lighting);
 
 /* After VF_ERR_NOMEM from vf_renderer_set_tf: the arena size that would have been enough for everything. */
 size_t vf_renderer_needed_bytes(const vf_renderer_t *renderer);
