@@ -70,7 +70,7 @@ typedef struct tf_point {
 } tf_point_t;
 
 typedef struct options {
-    const char *volume, *tf_file, *out;
+    const char *volume, *tf_file, *out, *save;
     int dims[3], have_dims;
     int check;            /* VolPack's example classification instead of a transfer function */
     shading_t shading;
@@ -102,6 +102,8 @@ typedef struct peer {
 static int usage_error(const char *option, const char *value, const char *expected);
 static int parse_options(options_t *o, int argc, char **argv);
 static unsigned char *load_volume(const options_t *o, int dims[3]);
+static unsigned char *boxes(int dims[3]);
+static int save_volume(const char *path, const unsigned char *voxels, const int dims[3]);
 static int load_tf(const char *path, tf_point_t *points, int *count);
 static double tf_eval(const tf_point_t *p, int count, double s, int channel);
 static int vp_check(vpResult result, const char *what);
@@ -125,6 +127,10 @@ int main(int argc, char **argv)
     unsigned char *voxels = load_volume(&o, dims);
     if (!voxels)
         return 2;
+    if (o.save && save_volume(o.save, voxels, dims)) {
+        free(voxels);
+        return 2;
+    }
     peer_t p;
     double t0 = now_ms();
     status = setup(&p, &o, voxels, dims);
@@ -218,7 +224,10 @@ static const char usage[] =
     "usage: volpack_peer VOLUME [--dims X,Y,Z] (--tf FILE | --check) [options] [-o OUT.png]\n"
     "Render VOLUME with VolPack (vpClassifyVolume, vpRenderClassifiedVolume) and time a turn about the\n"
     "vertical (y) axis, or write one view as PNG with -o.\n\n"
-    "  VOLUME            a VolPack .den file, or raw 8-bit voxels (x fastest; gzip-compressed or not) with --dims\n"
+    "  VOLUME            a VolPack .den file, or raw 8-bit voxels (x fastest; gzip-compressed or not) with --dims,\n"
+    "                    or 'boxes': a 128x128x84 phantom with no symmetry, for camera checks (a box of 120, a\n"
+    "                    block of 255 on its +z face near -x, -y, a block of 200 on its +x face near +y, -z)\n"
+    "  --save FILE       also write the voxels as raw 8-bit data (for volfix-sim --dims X,Y,Z --type uint8)\n"
     "  --tf FILE         volfix transfer-function file ('scalar r g b a' per line, scalars normalised to\n"
     "                    0..255); opacity per unit length, which VolPack corrects for each view's slab length\n"
     "  --check           VolPack's example classification instead (density ramp x gradient-magnitude ramp); sets\n"
@@ -336,6 +345,8 @@ static int parse_options(options_t *o, int argc, char **argv)
             takes = 0;
         } else if (strcmp(a, "-o") == 0 && v) {
             o->out = v;
+        } else if (strcmp(a, "--save") == 0 && v) {
+            o->save = v;
         } else if (strcmp(a, "--json") == 0) {
             o->json = 1;
             takes = 0;
@@ -366,6 +377,8 @@ static int parse_options(options_t *o, int argc, char **argv)
 static unsigned char *load_volume(const options_t *o, int dims[3])
 {
     const char *path = o->volume;
+    if (strcmp(path, "boxes") == 0)
+        return boxes(dims);
     size_t len = strlen(path);
     int den = len > 4 && strcmp(path + len - 4, ".den") == 0;
     gzFile f = gzopen(path, "rb");
@@ -426,6 +439,42 @@ static unsigned char *load_volume(const options_t *o, int dims[3])
         return NULL;
     }
     return v;
+}
+
+/* The camera phantom: no mirror or half-turn maps it onto itself, and each small block shows only from its
+ * side, so an image tells the view's direction and handedness. */
+static unsigned char *boxes(int dims[3])
+{
+    static const int block[3][7] = { /* x0, x1, y0, y1, z0, z1 (voxel ranges, end excluded), value */
+        {30, 91, 40, 101, 20, 61, 120},
+        {35, 50, 45, 60, 62, 70, 255},
+        {92, 100, 80, 95, 25, 35, 200},
+    };
+    dims[0] = 128, dims[1] = 128, dims[2] = 84;
+    unsigned char *v = calloc((size_t)dims[0] * dims[1] * dims[2], 1);
+    if (!v) {
+        fprintf(stderr, "volpack_peer: boxes: out of memory\n");
+        return NULL;
+    }
+    for (int b = 0; b < 3; b++)
+        for (int z = block[b][4]; z < block[b][5]; z++)
+            for (int y = block[b][2]; y < block[b][3]; y++)
+                memset(v + ((size_t)z * dims[1] + y) * dims[0] + block[b][0], block[b][6],
+                       (size_t)(block[b][1] - block[b][0]));
+    return v;
+}
+
+/* 0, or 2 with a message. */
+static int save_volume(const char *path, const unsigned char *voxels, const int dims[3])
+{
+    FILE *f = fopen(path, "wb");
+    size_t n = (size_t)dims[0] * dims[1] * dims[2];
+    int ok = f && fwrite(voxels, 1, n, f) == n;
+    if (f && fclose(f))
+        ok = 0;
+    if (!ok)
+        fprintf(stderr, "volpack_peer: %s: cannot write: %s\n", path, strerror(errno));
+    return ok ? 0 : 2;
 }
 
 /* A volfix transfer-function file (port/io/tf.h): 'scalar r g b a' a line, '#' comments, an optional
