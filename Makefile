@@ -402,7 +402,7 @@ clean:
 
 # ---- make bench-peers: volfix and VolPack side by side (tools/peers/run.sh, docs/peers.md) ------------------------
 # VolPack and valgrind from apt (tools/deps.sh peers); volfix's VolPack client and image comparer built into
-# $(BUILD)/peers; then the same four scenes rendered by both, timed and counted (about 5 minutes, progress on stderr).
+# $(BUILD)/peers; then the same four scenes rendered by both, timed and counted (5 to 8 minutes, progress on stderr).
 .PHONY: bench-peers peers-deps
 peers-deps:
 	@sh tools/deps.sh peers

@@ -22,7 +22,7 @@
 # volfix mode is also counted with an RGB transfer function (blue 255/256 of grey at the top), and where that
 # changes the count its figures get a column of their own.
 #
-# Output: the table (stdout, markdown); progress on stderr; files in $BUILD/peers. About 5 minutes on the
+# Output: the table (stdout, markdown); progress on stderr; files in $BUILD/peers. 5 to 8 minutes on the
 # shared 2-core machine, half of it callgrind (JOBS=2 counts run side by side; counts do not depend on load).
 cd "$(dirname "$0")/../.." || exit 2
 build=${BUILD:-build}
