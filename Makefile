@@ -399,3 +399,22 @@ test-long: deps
 
 clean:
 	rm -rf $(BUILD) out
+
+# ---- make bench-peers: volfix and VolPack side by side (tools/peers/run.sh, docs/peers.md) ------------------------
+# VolPack and valgrind from apt (tools/deps.sh peers); volfix's VolPack client and image comparer built into
+# $(BUILD)/peers; then the same four scenes rendered by both, timed and counted (5 to 8 minutes, progress on stderr).
+.PHONY: bench-peers peers-deps
+peers-deps:
+	@sh tools/deps.sh peers
+
+$(BUILD)/peers/volpack_peer: tools/peers/volpack_peer.c | peers-deps
+	@mkdir -p $(@D)
+	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -o $@ $< -lvolpack -lpng -lz -lm
+
+$(BUILD)/peers/peer_compare: tools/peers/peer_compare.c | peers-deps
+	@mkdir -p $(@D)
+	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -o $@ $< -lpng
+
+bench-peers: $(BUILD)/volfix-sim $(BUILD)/peers/volpack_peer $(BUILD)/peers/peer_compare
+	@BUILD=$(BUILD) VOLFIX_DATA=$(VOLFIX_DATA) sh tools/peers/run.sh
+# ---- end of make bench-peers ---------------------------------------------------------------------------------------

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Install the Debian packages that `make run` or `make test` need, when they are missing.
 # As root it runs apt-get itself; otherwise it prints the one command to run and fails.
-# Usage: tools/deps.sh run|test|hw|fuzz|mcu|cross
+# Usage: tools/deps.sh run|test|hw|fuzz|mcu|cross|peers
 set -u
 for_what=${1:-run}
 
@@ -18,6 +18,8 @@ case "$for_what" in
   fuzz) need="$need clang libclang-rt-14-dev" ;;
   # make mcu: the core and a firmware for a Cortex-M4 (arm-none-eabi-gcc), run on the MPS2 AN386 board in qemu
   mcu) need="$need gcc-arm-none-eabi qemu-system-arm" ;;
+  # make bench-peers: Debian's VolPack for volfix's own client of it (tools/peers), callgrind for the counts
+  peers) need="$need libvolpack1-dev valgrind" ;;
   # make test-cross: Debian's cross compilers with their C libraries, and qemu-user to run what they build; the
   # target's zlib and libpng come from apt's lists for arm64 and armhf (tools/cross-sysroot.sh), added below
   cross) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf libc6-dev-arm64-cross libc6-dev-armhf-cross"
