@@ -1,8 +1,8 @@
 /*
  * study.h: the fixed-point precision study: render scenes with many configurations of the core, measure each
  * against the double reference of the same algorithm (the fixed-point error alone) and against the ground
- * truth (the algorithm's own error), and record memory. study.c runs; study_report.c writes CSV, plots and
- * report.md; cmd_study.c decides what to run.
+ * truth (the algorithm's own error), and record memory. study.c runs; study_report.c and the writers
+ * study_report.h lists write CSV, plots, image strips, summary.json and report.md; cmd_study.c decides what to run.
  */
 #ifndef SIM_STUDY_H
 #define SIM_STUDY_H
