@@ -9,8 +9,10 @@
 
 #include <stddef.h>
 
-/* Returns 0, or 2 with "SDL_Init failed: SDL's reason" in err. */
-int vfp_sdl_init(char *err, size_t errlen);
+#include "status.h"
+
+/* Returns VFP_OK, or VFP_ERR with "SDL_Init failed: SDL's reason" in err. */
+vfp_status_t vfp_sdl_init(char *err, size_t errlen);
 void vfp_sdl_quit(void);
 
 #endif

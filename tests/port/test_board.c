@@ -64,14 +64,14 @@ static int expect_error(const char *name, const char *text, int line, const char
     vfp_board_t b;
     const char *path = write_board(name, text);
     char err[512] = "";
-    int status = vfp_board_load(&b, path, err, sizeof err);
+    vfp_status_t status = vfp_board_load(&b, path, err, sizeof err);
     char prefix[300];
     if (line > 0)
         snprintf(prefix, sizeof prefix, "%s:%d: ", path, line);
     else
         snprintf(prefix, sizeof prefix, "%s: ", path);
     snprintf(got, size, "%s", err);
-    return status == 2 && strncmp(err, prefix, strlen(prefix)) == 0 && strstr(err, phrase) != NULL &&
+    return status == VFP_ERR && strncmp(err, prefix, strlen(prefix)) == 0 && strstr(err, phrase) != NULL &&
            strchr(err, '\n') == NULL;
 }
 
@@ -569,11 +569,11 @@ static void whole_file_problems(void)
     EXPECT_ERROR("empty.board", "", 0, "no display given");
     vfp_board_t b;
     char err[512] = "";
-    CHECK_EQ(vfp_board_load(&b, "/nonexistent/x.board", err, sizeof err), 2);
+    CHECK_EQ(vfp_board_load(&b, "/nonexistent/x.board", err, sizeof err), VFP_ERR);
     CHECK_MSG(strcmp(err, "/nonexistent/x.board: cannot open: No such file or directory") == 0, "%s", err);
     err[0] = '\0';
     write_board("dummy", "");
-    CHECK_EQ(vfp_board_load(&b, tmpdir, err, sizeof err), 2); /* a directory */
+    CHECK_EQ(vfp_board_load(&b, tmpdir, err, sizeof err), VFP_ERR); /* a directory */
     CHECK_MSG(strstr(err, ": cannot read: Is a directory") && strncmp(err, tmpdir, strlen(tmpdir)) == 0, "%s", err);
 }
 

@@ -191,7 +191,7 @@ static void default_directory(void)
     char err[256] = "";
     int opened = d.ops->open(&d, &b, err, sizeof err);
     uint8_t px[2] = {0, 0};
-    int presented = opened == 0 ? d.ops->present(&d, 0, 0, 1, 1, px, 2, err, sizeof err) : 2;
+    int presented = opened == VFP_OK ? d.ops->present(&d, 0, 0, 1, 1, px, 2, err, sizeof err) : VFP_ERR;
     d.ops->close(&d);
     int exists = file_exists("out/frames/frame-00000.png");
     CHECK(chdir(cwd) == 0);

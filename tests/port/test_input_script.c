@@ -35,7 +35,7 @@ static int load(vfp_input_t *in, const char *text, char *err, size_t errlen)
     do { \
         vfp_input_t in_; \
         char err_[256]; \
-        CHECK_EQ(load(&in_, text, err_, sizeof err_), 2); \
+        CHECK_EQ(load(&in_, text, err_, sizeof err_), VFP_ERR); \
         CHECK_MSG(strncmp(err_, phrase, strlen(phrase)) == 0, "expected '%s', got '%s'", phrase, err_); \
         CHECK(in_.priv == NULL); \
     } while (0)
@@ -156,7 +156,7 @@ static void bad_lines(void)
     b.knob_count = 0;
     vfp_input_t in;
     char err[256];
-    CHECK_EQ(vfp_script_load_string(&in, &b, "0 turn 0 1", "k.script", 0, err, sizeof err), 2);
+    CHECK_EQ(vfp_script_load_string(&in, &b, "0 turn 0 1", "k.script", 0, err, sizeof err), VFP_ERR);
     CHECK_MSG(strcmp(err, "k.script:1: turn: the board has no knobs") == 0, "%s", err);
 }
 
@@ -194,10 +194,10 @@ static void open_from_file(void)
     ops->close(&in);
 
     /* the board's script when no --script; a missing file is named */
-    CHECK_EQ(ops->open(&in, &b, NULL, err, sizeof err), 2);
+    CHECK_EQ(ops->open(&in, &b, NULL, err, sizeof err), VFP_ERR);
     CHECK_MSG(strcmp(err, "/nonexistent.script: cannot open: No such file or directory") == 0, "%s", err);
     b.script[0] = '\0';
-    CHECK_EQ(ops->open(&in, &b, "", err, sizeof err), 2);
+    CHECK_EQ(ops->open(&in, &b, "", err, sizeof err), VFP_ERR);
     CHECK_MSG(strcmp(err, "test.board: input = script needs a script (input.script in the board file, or --script "
                           "FILE)") == 0, "%s", err);
 }

@@ -200,10 +200,10 @@ static inline void fx_expect_error(const char *spec, const vfp_load_opts_t *opts
     vfp_volume_t vol;
     char err[VFP_ERR_LEN];
     memset(&vol, 0x5a, sizeof vol);
-    int rc = vfp_volume_load(&vol, spec, opts, err, sizeof err);
+    vfp_status_t rc = vfp_volume_load(&vol, spec, opts, err, sizeof err);
     if (getenv("VOLFIX_SHOW_ERRORS"))
         printf("# %s\n", err);
-    CHECK_MSG(rc == 2, "load of %s returned %d, expected 2", spec, rc);
+    CHECK_MSG(rc == VFP_ERR, "load of %s returned %d, expected VFP_ERR", spec, rc);
     CHECK_MSG(strstr(err, name) != NULL, "error '%s' does not name '%s'", err, name);
     CHECK_MSG(strstr(err, phrase) != NULL, "error '%s' lacks '%s'", err, phrase);
     CHECK_MSG(strchr(err, '\n') == NULL, "error '%s' is more than one line", err);
@@ -211,11 +211,11 @@ static inline void fx_expect_error(const char *spec, const vfp_load_opts_t *opts
 }
 
 /* Same for the parsers, which name the option instead of a file. */
-static inline void fx_expect_text(int rc, const char *err, const char *phrase1, const char *phrase2)
+static inline void fx_expect_text(vfp_status_t rc, const char *err, const char *phrase1, const char *phrase2)
 {
     if (getenv("VOLFIX_SHOW_ERRORS"))
         printf("# %s\n", err);
-    CHECK_EQ(rc, 2);
+    CHECK_EQ(rc, VFP_ERR);
     CHECK_MSG(strstr(err, phrase1) != NULL, "error '%s' lacks '%s'", err, phrase1);
     CHECK_MSG(strstr(err, phrase2) != NULL, "error '%s' lacks '%s'", err, phrase2);
 }
