@@ -21,7 +21,7 @@ int main(int argc, char **argv)
 {
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
         fputs(usage, argc < 2 ? stderr : stdout);
-        return argc < 2 ? 2 : 0;
+        return argc < 2 ? VFP_EXIT_ERR : VFP_EXIT_OK;
     }
     const char *cmd = argv[1];
     if (strcmp(cmd, "render") == 0)
@@ -38,6 +38,7 @@ int main(int argc, char **argv)
         return sim_cmd_study(argc - 2, argv + 2);
     if (strcmp(cmd, "diff") == 0)
         return sim_cmd_diff(argc - 2, argv + 2);
-    fprintf(stderr, "volfix-sim: unknown command '%s' (expected render, compare, bench, tables, ray, study or diff; see --help)\n", cmd);
-    return 2;
+    fprintf(stderr, "volfix-sim: unknown command '%s' (expected render, compare, bench, tables, ray, study or diff; "
+                    "see --help)\n", cmd);
+    return VFP_EXIT_ERR;
 }

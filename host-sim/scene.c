@@ -19,21 +19,21 @@ vf_view_t sim_view(double azimuth, double elevation, double roll, double zoom)
     return v;
 }
 
-int sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen)
+vfp_status_t sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen)
 {
     memset(s, 0, sizeof *s);
     if (vfp_volume_load(&s->vol, o->volume, &o->load, err, errlen))
-        return 2;
+        return VFP_ERR;
     s->window = vfp_default_window(&s->vol);
     if (o->window && vfp_parse_window(&s->vol, o->window, &s->window, err, errlen)) {
         vfp_volume_free(&s->vol);
-        return 2;
+        return VFP_ERR;
     }
-    int status = o->tf_file ? vfp_tf_load(&s->tf, o->tf_file, err, errlen)
-                            : vfp_tf_preset(&s->tf, o->preset ? o->preset : "ramp", err, errlen);
+    vfp_status_t status = o->tf_file ? vfp_tf_load(&s->tf, o->tf_file, err, errlen)
+                                     : vfp_tf_preset(&s->tf, o->preset ? o->preset : "ramp", err, errlen);
     if (status) {
         vfp_volume_free(&s->vol);
-        return 2;
+        return VFP_ERR;
     }
     if (o->tf_shift != 0 || o->tf_scale != 1)
         vfp_tf_move(&s->tf, &s->vol, s->window, o->tf_shift, o->tf_scale);
@@ -44,7 +44,7 @@ int sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen
     s->height = o->height;
     s->format = o->format;
     s->threads = o->threads;
-    return 0;
+    return VFP_OK;
 }
 
 void sim_scene_free(sim_scene_t *s)
@@ -53,7 +53,7 @@ void sim_scene_free(sim_scene_t *s)
     memset(s, 0, sizeof *s);
 }
 
-int sim_image_alloc(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
+vfp_status_t sim_image_alloc(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
 {
     return vfp_image_alloc(img, width, height, format);
 }
@@ -63,21 +63,21 @@ void sim_image_free(vf_image_t *img)
     vfp_image_free(img);
 }
 
-int sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, char *err, size_t errlen)
+vfp_status_t sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, char *err, size_t errlen)
 {
     vfp_render_t r;
     if (sim_image_alloc(img, s->width, s->height, s->format)) {
         snprintf(err, errlen, "out of memory for a %ux%u image", s->width, s->height);
-        return 2;
+        return VFP_ERR;
     }
-    int status = vfp_render_open(&r, &s->params, &s->vol.core, s->threads, err, errlen);
-    if (status == 0)
+    vfp_status_t status = vfp_render_open(&r, &s->params, &s->vol.core, s->threads, err, errlen);
+    if (status == VFP_OK)
         status = vfp_render_set_window(&r, s->window, err, errlen);
-    if (status == 0)
+    if (status == VFP_OK)
         status = vfp_render_set_tf(&r, s->points, s->npoints, err, errlen);
-    if (status == 0)
+    if (status == VFP_OK)
         status = vfp_render_frame(&r, &s->view, img, err, errlen);
-    if (status == 0 && factor)
+    if (status == VFP_OK && factor)
         *factor = *vf_render_factor(r.core);
     vfp_render_close(&r);
     if (status)
@@ -87,13 +87,13 @@ int sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, 
 
 /* The reference and the truth get the same inputs the core gets: the spacing, view and transfer function as
  * quantised for the core, and they window the raw voxels themselves. */
-int sim_ref_inputs(const sim_scene_t *s, sim_ref_inputs_t *in)
+vfp_status_t sim_ref_inputs(const sim_scene_t *s, sim_ref_inputs_t *in)
 {
     const vf_volume_t *cv = &s->vol.core;
     int dims[3] = {(int)cv->dims[0], (int)cv->dims[1], (int)cv->dims[2]};
     in->scalars = malloc((size_t)dims[0] * dims[1] * dims[2]);
     if (!in->scalars)
-        return 2;
+        return VFP_ERR;
     ref_window(cv->voxels, (int)cv->type, dims, s->window.lo, s->window.hi, in->scalars);
     in->vol = (ref_volume_t){{dims[0], dims[1], dims[2]},
                              {cv->spacing_q16[0] / 65536.0, cv->spacing_q16[1] / 65536.0, cv->spacing_q16[2] / 65536.0},
@@ -105,7 +105,7 @@ int sim_ref_inputs(const sim_scene_t *s, sim_ref_inputs_t *in)
     in->view = (ref_view_t){s->view.azimuth, s->view.elevation, s->view.roll, s->view.zoom_q16 / 65536.0};
     for (int c = 0; c < 3; c++)
         in->background[c] = s->params.background[c] / 65535.0;
-    return 0;
+    return VFP_OK;
 }
 
 void sim_ref_inputs_free(sim_ref_inputs_t *in)
@@ -137,8 +137,8 @@ static void rgb_to_image(const sim_scene_t *s, const double *rgb, vf_image_t *im
         }
 }
 
-int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, vf_image_t *img, char *err,
-                         size_t errlen)
+vfp_status_t sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, vf_image_t *img, char *err,
+                                  size_t errlen)
 {
     sim_ref_inputs_t in;
     in.scalars = NULL;
@@ -147,7 +147,7 @@ int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, v
         free(rgb);
         sim_ref_inputs_free(&in);
         snprintf(err, errlen, "out of memory for the reference");
-        return 2;
+        return VFP_ERR;
     }
     ref_params_t params = {0};
     params.mode = s->params.mode == VF_MODE_POINT ? REF_MODE_POINT
@@ -186,10 +186,10 @@ int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, v
     }
     sim_ref_inputs_free(&in);
     free(rgb);
-    return status ? 2 : 0;
+    return status ? VFP_ERR : VFP_OK;
 }
 
-int sim_render_truth(const sim_scene_t *s, vf_image_t *img, char *err, size_t errlen)
+vfp_status_t sim_render_truth(const sim_scene_t *s, vf_image_t *img, char *err, size_t errlen)
 {
     sim_ref_inputs_t in;
     in.scalars = NULL;
@@ -198,7 +198,7 @@ int sim_render_truth(const sim_scene_t *s, vf_image_t *img, char *err, size_t er
         free(rgb);
         sim_ref_inputs_free(&in);
         snprintf(err, errlen, "out of memory for the ground truth");
-        return 2;
+        return VFP_ERR;
     }
     int status = truth_render(&in.vol, in.tf, in.npoints, in.background, &in.view, (int)s->width,
                               (int)s->height, s->threads, rgb);
@@ -210,7 +210,7 @@ int sim_render_truth(const sim_scene_t *s, vf_image_t *img, char *err, size_t er
     }
     sim_ref_inputs_free(&in);
     free(rgb);
-    return status ? 2 : 0;
+    return status ? VFP_ERR : VFP_OK;
 }
 
 void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)

@@ -21,11 +21,11 @@ static void csv_text(FILE *f, const char *s)
     fputs("\",", f);
 }
 
-int study_write_csv(const study_t *st, char *err, size_t errlen)
+vfp_status_t study_write_csv(const study_t *st, char *err, size_t errlen)
 {
     FILE *f = study_open_file(st, "results.csv", err, errlen);
     if (!f)
-        return 2;
+        return VFP_ERR;
     fprintf(f, "scene,volume,preset,view,size,factor,value,mode,table_size,table_bits,lookup,correction,buffer,rays,"
                "partial_slabs,sample_bits,intermediate_bits,warp_bits,ref_psnr_db,ref_max,ref_mean,ref_over1_pct,"
                "truth_psnr_db,truth_max,truth_mean,mem_slices,mem_runs,mem_tables,mem_intermediate,mem_band_scratch,"
@@ -61,5 +61,5 @@ int study_write_csv(const study_t *st, char *err, size_t errlen)
             fprintf(f, "\n");
     }
     fclose(f);
-    return 0;
+    return VFP_OK;
 }

@@ -5,13 +5,13 @@
 #include "render/render_mt.h"
 #include "study_report.h"
 
-int study_write_summary(const study_t *st, const study_claims_t *c, const char *claim_strip, char *err,
-                        size_t errlen)
+vfp_status_t study_write_summary(const study_t *st, const study_claims_t *c, const char *claim_strip, char *err,
+                                 size_t errlen)
 {
     const study_floor_t *fl = &st->floor;
     FILE *j = study_open_file(st, "summary.json", err, errlen);
     if (!j)
-        return 2;
+        return VFP_ERR;
     fprintf(j, "{\"quick\": %d, \"runs\": %d, \"scenes\": %d, \"seconds\": %.1f, "
                "\"ml41_sharp_preint1_truth_psnr_db\": %.3f, \"ml41_sharp_point_truth_psnr_db\": %.3f, "
                "\"preint1_gain_db\": %.3f, \"interior_preint1_truth_psnr_db\": %.3f, "
@@ -37,5 +37,5 @@ int study_write_summary(const study_t *st, const study_claims_t *c, const char *
             c->claim_preclass_db, c->claim_gain_db, c->claim_max_ref, c->r8_point_db, c->r8_preint1_db, c->r8_gain_db,
             c->rays_runs, c->rays_max_ref, c->rays_min_psnr, claim_strip);
     fclose(j);
-    return 0;
+    return VFP_OK;
 }

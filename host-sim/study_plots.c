@@ -7,7 +7,7 @@
 #include "study_report.h"
 
 /* A plot's data and gnuplot script, NAME.dat and NAME.gp in the study's directory; both or neither. */
-static int open_plot(const study_t *st, const char *name, FILE **d, FILE **g, char *err, size_t errlen)
+static vfp_status_t open_plot(const study_t *st, const char *name, FILE **d, FILE **g, char *err, size_t errlen)
 {
     char file[64];
     snprintf(file, sizeof file, "%s.dat", name);
@@ -18,7 +18,7 @@ static int open_plot(const study_t *st, const char *name, FILE **d, FILE **g, ch
         fclose(*d);
         *d = NULL;
     }
-    return *g ? 0 : 2;
+    return *g ? VFP_OK : VFP_ERR;
 }
 
 /* Data for one line of a plot: the runs of a scene and factor, value against a measure. */
@@ -34,26 +34,26 @@ static void write_series(FILE *f, const study_t *st, int scene, const char *fact
     fprintf(f, "\n\n"); /* a gnuplot data set */
 }
 
-static int gnuplot(const study_t *st, const char *script, char *err, size_t errlen)
+static vfp_status_t gnuplot(const study_t *st, const char *script, char *err, size_t errlen)
 {
     char command[2048];
     snprintf(command, sizeof command, "cd '%s' && gnuplot '%s' 2>gnuplot.log", st->dir, script);
     if (system(command) != 0) {
         snprintf(err, errlen, "%s/%s: gnuplot failed (is gnuplot installed? see %s/gnuplot.log)", st->dir, script,
                  st->dir);
-        return 2;
+        return VFP_ERR;
     }
-    return 0;
+    return VFP_OK;
 }
 
-static int plot_bits(const study_t *st, char *err, size_t errlen)
+static vfp_status_t plot_bits(const study_t *st, char *err, size_t errlen)
 {
     const char *stages[4] = {"table_bits", "sample_bits", "intermediate_bits", "warp_bits"};
     const char *titles[4] = {"table entries (bits)", "samples (fraction bits; 32 = exact)", "intermediate image (bits)",
                              "warp weights (fraction bits)"};
     FILE *d, *g;
     if (open_plot(st, "bits", &d, &g, err, errlen))
-        return 2;
+        return VFP_ERR;
     fprintf(g, "set terminal pngcairo size 1200,900 font ',10'\nset output 'bits.png'\n"
                "set multiplot layout 2,2 title 'Fixed-point error by precision of each stage (PSNR against the double "
                "reference, higher is better)'\nset grid\nset key bottom right\nset ylabel 'PSNR (dB)'\n");
@@ -76,12 +76,12 @@ static int plot_bits(const study_t *st, char *err, size_t errlen)
     return gnuplot(st, "bits.gp", err, errlen);
 }
 
-static int plot_table_size(const study_t *st, char *err, size_t errlen)
+static vfp_status_t plot_table_size(const study_t *st, char *err, size_t errlen)
 {
     const char *factors[2] = {"table_size_nearest", "table_size_bilinear"};
     FILE *d, *g;
     if (open_plot(st, "table_size", &d, &g, err, errlen))
-        return 2;
+        return VFP_ERR;
     fprintf(g, "set terminal pngcairo size 1200,450 font ',10'\nset output 'table_size.png'\n"
                "set multiplot layout 1,2 title 'Table size and lookup'\nset grid\nset logscale x 2\n"
                "set xlabel 'table entries N'\nset ylabel 'PSNR (dB)'\nset key bottom right\n");
@@ -107,11 +107,11 @@ static int plot_table_size(const study_t *st, char *err, size_t errlen)
     return gnuplot(st, "table_size.gp", err, errlen);
 }
 
-static int plot_orders(const study_t *st, char *err, size_t errlen)
+static vfp_status_t plot_orders(const study_t *st, char *err, size_t errlen)
 {
     FILE *d, *g;
     if (open_plot(st, "orders", &d, &g, err, errlen))
-        return 2;
+        return VFP_ERR;
     fprintf(d, "scene");
     for (int m = 0; m < VF_MODE_COUNT; m++)
         fprintf(d, " %s", vf_mode_name((vf_mode_t)m));
@@ -141,11 +141,11 @@ static int plot_orders(const study_t *st, char *err, size_t errlen)
     return gnuplot(st, "orders.gp", err, errlen);
 }
 
-static int plot_memory(const study_t *st, char *err, size_t errlen)
+static vfp_status_t plot_memory(const study_t *st, char *err, size_t errlen)
 {
     FILE *d, *g;
     if (open_plot(st, "memory", &d, &g, err, errlen))
-        return 2;
+        return VFP_ERR;
     int which[STUDY_MAX_SCENES], n = 0;
     for (int s = 0; s < st->scene_count; s++)
         if (strncmp(st->scenes[s].label, "fixed-", 6) != 0)
@@ -171,11 +171,11 @@ static int plot_memory(const study_t *st, char *err, size_t errlen)
 }
 
 /* The gain of pre-integration over point sampling (PSNR against the truth) against the peaks' half-width. */
-static int plot_peaks(const study_t *st, char *err, size_t errlen)
+static vfp_status_t plot_peaks(const study_t *st, char *err, size_t errlen)
 {
     FILE *d, *g;
     if (open_plot(st, "peaks", &d, &g, err, errlen))
-        return 2;
+        return VFP_ERR;
     for (int inside = 0; inside < 2; inside++) {
         for (int s = 0; s < st->scene_count; s++) {
             const char *label = st->scenes[s].label;
@@ -210,12 +210,12 @@ static int plot_peaks(const study_t *st, char *err, size_t errlen)
 
 /* Distance from the truth against rays per voxel column on Marschner-Lobb (the rays sweep), and preint1's gain
  * over point: one line per mode and side-face rule, a data set each in rays.dat (only those that were run). */
-static int plot_rays(const study_t *st, char *err, size_t errlen)
+static vfp_status_t plot_rays(const study_t *st, char *err, size_t errlen)
 {
     static const unsigned rays[STUDY_RAYS_STEPS] = {1, 2, 4, 8, 16};
     FILE *d, *g;
     if (open_plot(st, "rays", &d, &g, err, errlen))
-        return 2;
+        return VFP_ERR;
     fprintf(g, "set terminal pngcairo size 1200,480 font ',10'\nset output 'rays.png'\n"
                "set multiplot layout 1,2 title 'Marschner-Lobb 41^3, sharp, 512x512, view 30,20: rays per voxel "
                "column (one slab per slice throughout)'\nset grid\nset logscale x 2\nset xtics (1, 2, 4, 8, 16)\n"
@@ -276,10 +276,10 @@ static int plot_rays(const study_t *st, char *err, size_t errlen)
     return gnuplot(st, "rays.gp", err, errlen);
 }
 
-int study_write_plots(const study_t *st, char *err, size_t errlen)
+vfp_status_t study_write_plots(const study_t *st, char *err, size_t errlen)
 {
     if (plot_bits(st, err, errlen) || plot_table_size(st, err, errlen) || plot_orders(st, err, errlen) ||
         plot_memory(st, err, errlen) || plot_peaks(st, err, errlen) || plot_rays(st, err, errlen))
-        return 2;
-    return 0;
+        return VFP_ERR;
+    return VFP_OK;
 }

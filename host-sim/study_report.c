@@ -12,15 +12,15 @@
 #include "study_report.h"
 
 /* The intermediate image's size for R rays per voxel column at the scene's view (section 3). */
-static int intermediate_size(const study_t *st, int scene, uint32_t rays, uint32_t *w, uint32_t *h)
+static vfp_status_t intermediate_size(const study_t *st, int scene, uint32_t rays, uint32_t *w, uint32_t *h)
 {
     const sim_scene_t *s = &st->scenes[scene].scene;
     vf_factor_t f;
     if (vf_factor(&f, &s->vol.core, &s->view, s->width, s->height) != VF_OK || vf_factor_rays(&f, rays) != VF_OK)
-        return 2;
+        return VFP_ERR;
     *w = f.int_w;
     *h = f.int_h;
-    return 0;
+    return VFP_OK;
 }
 
 /* Claim 1 restated: the same comparison with the errors both orders share taken away, and R = 8 beside it. */
@@ -265,10 +265,10 @@ static void table_of(FILE *f, const study_t *st, const char *factor, const char 
     fprintf(f, "\n");
 }
 
-int study_write_report(study_t *st, char *err, size_t errlen)
+vfp_status_t study_write_report(study_t *st, char *err, size_t errlen)
 {
     if (study_write_csv(st, err, errlen) || study_write_plots(st, err, errlen))
-        return 2;
+        return VFP_ERR;
     char strips[5][128];
     int strip_count = 0;
     const char *strip_scenes[] = {"ml41-sharp", "ml41-sharp-interior", "ml41-ramp", "neghip-sharp"};
@@ -276,7 +276,7 @@ int study_write_report(study_t *st, char *err, size_t errlen)
         for (int s = 0; s < st->scene_count; s++)
             if (strcmp(st->scenes[s].label, strip_scenes[k]) == 0 &&
                 study_write_strip(st, s, NULL, NULL, strips[strip_count++], sizeof strips[0], err, errlen))
-                return 2;
+                return VFP_ERR;
     /* claim 1's configuration without the shared errors, when the rays sweep ran it */
     char claim_strip[128] = "";
     int ml = study_scene_index(st, "ml41-sharp");
@@ -288,17 +288,17 @@ int study_write_report(study_t *st, char *err, size_t errlen)
         char suffix[64];
         snprintf(suffix, sizeof suffix, "rays%u-partial-%u", STUDY_CLAIM_RAYS, STUDY_CLAIM_TABLE);
         if (study_write_strip(st, ml, &p, suffix, claim_strip, sizeof claim_strip, err, errlen))
-            return 2;
+            return VFP_ERR;
     }
 
     study_claims_t c = study_claims(st);
     const study_floor_t *fl = &st->floor;
     if (study_write_summary(st, &c, claim_strip, err, errlen))
-        return 2;
+        return VFP_ERR;
 
     FILE *f = study_open_file(st, "report.md", err, errlen);
     if (!f)
-        return 2;
+        return VFP_ERR;
     time_t now = time(NULL);
     char when[64];
     strftime(when, sizeof when, "%Y-%m-%d %H:%M UTC", gmtime(&now));
@@ -385,5 +385,5 @@ int study_write_report(study_t *st, char *err, size_t errlen)
     study_recommend(f, st);
     table_of(f, st, "fixed_point", "## The fixed-point check, every render\n");
     fclose(f);
-    return 0;
+    return VFP_OK;
 }

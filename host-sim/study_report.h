@@ -8,7 +8,7 @@
  *   study_json.c       summary.json, the numbers the claims rest on, for tests
  *   study_report.c     report.md, which embeds the others and states the claims
  *   study_recommend.c  report.md's recommended configurations
- * Writers that can fail return 0, or 2 with a one-line message in err.
+ * Writers that can fail return VFP_OK, or VFP_ERR with a one-line message in err.
  */
 #ifndef SIM_STUDY_REPORT_H
 #define SIM_STUDY_REPORT_H
@@ -68,15 +68,15 @@ double study_pixels_per_voxel(const study_scene_t *sc);
 /* ------------------------------------------------------------------------------------------------------- */
 /* The writers */
 
-int study_write_csv(const study_t *st, char *err, size_t errlen);
-int study_write_plots(const study_t *st, char *err, size_t errlen);
+vfp_status_t study_write_csv(const study_t *st, char *err, size_t errlen);
+vfp_status_t study_write_plots(const study_t *st, char *err, size_t errlen);
 /* The strip of a scene with the default configuration (base NULL) or base's rays, side-face rule and table size
  * for every mode; named strip-LABEL.png, or strip-LABEL-SUFFIX.png (the name goes into name). */
-int study_write_strip(study_t *st, int scene, const vf_params_t *base, const char *suffix, char *name,
-                      size_t namelen, char *err, size_t errlen);
+vfp_status_t study_write_strip(study_t *st, int scene, const vf_params_t *base, const char *suffix, char *name,
+                               size_t namelen, char *err, size_t errlen);
 /* claim_strip: the strip of claim 1's configuration, "" when the rays sweep did not run it. */
-int study_write_summary(const study_t *st, const study_claims_t *c, const char *claim_strip, char *err,
-                        size_t errlen);
+vfp_status_t study_write_summary(const study_t *st, const study_claims_t *c, const char *claim_strip, char *err,
+                                 size_t errlen);
 /* report.md's "Recommendations" section. */
 void study_recommend(FILE *f, const study_t *st);
 

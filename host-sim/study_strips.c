@@ -22,8 +22,8 @@ static const uint8_t *kept_image(const study_t *st, int scene, const vf_params_t
     return NULL;
 }
 
-int study_write_strip(study_t *st, int scene, const vf_params_t *base, const char *suffix, char *name,
-                      size_t namelen, char *err, size_t errlen)
+vfp_status_t study_write_strip(study_t *st, int scene, const vf_params_t *base, const char *suffix, char *name,
+                               size_t namelen, char *err, size_t errlen)
 {
     const study_scene_t *sc = &st->scenes[scene];
     const uint32_t w = sc->size, cols = VF_MODE_COUNT + 1;
@@ -35,7 +35,7 @@ int study_write_strip(study_t *st, int scene, const vf_params_t *base, const cha
         free(img);
         if (truth)
             snprintf(err, errlen, "out of memory");
-        return 2;
+        return VFP_ERR;
     }
     for (uint32_t col = 0; col < cols; col++) {
         if (col < VF_MODE_COUNT) {
@@ -52,7 +52,7 @@ int study_write_strip(study_t *st, int scene, const vf_params_t *base, const cha
             else if (study_render_core(st, scene, &p, img, err, errlen)) {
                 free(strip);
                 free(img);
-                return 2;
+                return VFP_ERR;
             }
         } else {
             memcpy(img, truth, pixels * 3);
@@ -72,7 +72,7 @@ int study_write_strip(study_t *st, int scene, const vf_params_t *base, const cha
     snprintf(name, namelen, "strip-%s%s%s.png", sc->label, suffix ? "-" : "", suffix ? suffix : "");
     char path[1024];
     snprintf(path, sizeof path, "%s/%s", st->dir, name);
-    int status = vfp_png_write_rgb(path, strip, cols * w, 2 * w, err, errlen);
+    vfp_status_t status = vfp_png_write_rgb(path, strip, cols * w, 2 * w, err, errlen);
     free(strip);
     free(img);
     return status;

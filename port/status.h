@@ -10,16 +10,17 @@
  * every program exits with status 2 for all of them, as the README promises, so a test of a bad input checks one
  * thing everywhere, VFP_ERR or exit status 2, and then the message, which is where the kinds differ.
  *
- * VFP_ERR is 2, the exit status it ends in, so a status printed in a test's message reads as the program's.
+ * The numbers are fixed: code that compares numbers rather than names (boards/mps2-an386/gen_scene.c reads 1 as
+ * --help) relies on them, and VFP_ERR is also the exit status it ends in.
  */
 #ifndef VFP_STATUS_H
 #define VFP_STATUS_H
 
 typedef enum vfp_status {
     VFP_OK = 0,
+    VFP_HELP_SHOWN = 1,   /* an option parser printed the usage for --help: nothing more to do */
     VFP_ERR = 2,          /* failed: err holds one line saying what, and where */
     VFP_DISPLAY_LOST = 3, /* a display's present(): the device went away (an unplugged USB display) */
-    VFP_HELP_SHOWN = 4,   /* an option parser printed the usage for --help: nothing more to do */
 } vfp_status_t;
 
 /* The programs' exit statuses. */
