@@ -110,7 +110,7 @@ vfp_status_t vfpi_board_fail(vfpi_board_parser_t *p, int line, const char *fmt, 
         snprintf(p->err, p->errlen, "%s:%d: %s", p->path, line, msg);
     else
         snprintf(p->err, p->errlen, "%s: %s", p->path, msg);
-    /* a quoted key or value may carry a vertical tab or a terminal escape from the file (found by tests/fuzz) */
+    /* a quoted key or value may carry a vertical tab or a terminal escape from the file (tests/fuzz sends them) */
     if (p->errlen)
         vfp_printable(p->err);
     return VFP_ERR;

@@ -246,7 +246,7 @@ static vfp_status_t parse(script_t *s, const vfp_board_t *board, char *text, con
     return VFP_OK;
 }
 
-/* A quoted word may carry a control byte from the file (a terminal escape, a form feed; found by tests/fuzz).
+/* A quoted word may carry a control byte from the file (a terminal escape, a form feed; tests/fuzz sends them).
  * Returns VFP_ERR, for `return printable()`. */
 static vfp_status_t printable(char *err, size_t errlen)
 {

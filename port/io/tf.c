@@ -10,7 +10,7 @@
 /* Mapped scalars (0..255 is the window) are kept within this far outside it: far enough that no output level
  * changes (an edge value interpolated across 1e12 moves by less than 1e-10), near enough that a difference of two
  * stays finite. A scalar of -1e308 in the file, times 255, is -inf, and the edge value between -inf and a point in
- * the window was inf/inf, NaN, converted to uint16_t (undefined; found by tests/fuzz). */
+ * the window would be inf/inf, NaN, converted to uint16_t (undefined behaviour; tests/fuzz keeps such a file). */
 #define FAR_SCALAR 1e12
 
 typedef struct preset {
@@ -87,7 +87,7 @@ vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errle
     ssize_t len;
     int lineno = 0;
     vfp_status_t status = VFP_OK;
-    /* Whole lines however long (fgets into a fixed buffer read the rest of a long comment as a line of its own). */
+    /* Whole lines however long: a fixed buffer would read the rest of a long comment as a line of its own. */
     while (status == VFP_OK && (len = getline(&line, &cap, f)) >= 0) {
         lineno++;
         if ((size_t)len != strlen(line)) {

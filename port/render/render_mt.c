@@ -45,10 +45,9 @@ vfp_status_t vfp_render_open(vfp_render_t *r, const vf_params_t *params, const v
     r->params = *params;
     r->volume = volume;
     r->threads = threads < 1 ? 1 : threads > VFP_MAX_THREADS ? VFP_MAX_THREADS : threads;
-    /* Taller bands pay a slab's or slice's set-up fewer times a frame (one thread, engine at 512x512, ramp: 32 rows
-     * take 1.1% fewer instructions than 8 for point and 1.8% for preint1, callgrind over 2 frames of volfix-sim
-     * bench); shorter ones share the work out more evenly: about ten bands a thread for a 300-row intermediate
-     * image, never fewer than 8 rows. */
+    /* Taller bands pay a slab's or slice's set-up fewer times a frame, so one thread takes 32 rows at a time;
+     * shorter ones share the work out more evenly, so more threads take fewer: about ten bands a thread for a
+     * 300-row intermediate image, never fewer than 8 rows. */
     r->band_rows = 32 / (uint32_t)r->threads < 8 ? 8 : 32 / (uint32_t)r->threads;
     size_t fixed;
     vf_status_t s = vf_renderer_bytes(params, volume, &fixed);
@@ -166,7 +165,7 @@ static vfp_status_t create_core(vfp_render_t *r, size_t arena_bytes, char *err, 
 
 /* Give the core what changed (the window, or the transfer function), growing the arena once if the run lists
  * need it; a new core gets both. Each core call re-encodes the runs, so a transfer-function change must not
- * set the window again: that would rebuild the slices and encode twice (the viewer's level knob felt it). */
+ * set the window again: that would rebuild the slices and encode twice, which a turning level knob would feel. */
 static vfp_status_t apply(vfp_render_t *r, int window_changed, char *err, size_t errlen)
 {
     double t0 = vfp_now_ms();

@@ -261,8 +261,8 @@ int main(int argc, char **argv)
     /* Renderers are re-made at other sizes as modes, presets and transfer functions change. glibc would raise its
      * mmap threshold after the first large free and then serve those arenas from the heap, where they fragment
      * and the process grows over a long session; a fixed threshold keeps them in mmap, given back on free. 32 KB
-     * puts frame images and band scratch there too: at 128 KB, a heap fragmented by them grew the peak resident
-     * size by up to 100 KB late in tests/long's 10,000 frames (at 32 KB, 80 KB at most in six runs). */
+     * rather than glibc's 128 KB puts frame images and band scratch there too, so that they cannot fragment the
+     * heap either: tests/long holds the peak resident size of 10,000 frames within its bound. */
     mallopt(M_MMAP_THRESHOLD, 32 * 1024);
 #endif
     options_t o;
