@@ -435,20 +435,15 @@ static int matrix_variants(const vf_params_t *scene_params, variant_t *v)
 
 int sim_cmd_bench(int argc, char **argv)
 {
-    char usage[4096], err[VFP_ERR_LEN];
-    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    unsigned groups = SIM_OPT_SCENE | SIM_OPT_JSON | SIM_OPT_FRAMES | SIM_OPT_MATRIX | SIM_OPT_ROUNDS;
-    vfp_status_t status = sim_parse(&o, argc, argv, groups, usage);
+    sim_scene_t s;
+    unsigned groups = SIM_OPT_JSON | SIM_OPT_FRAMES | SIM_OPT_MATRIX | SIM_OPT_ROUNDS;
+    vfp_status_t status = sim_scene_command(&o, &s, argc, argv, groups, usage_head);
     if (status)
         return vfp_exit_status(status);
     if (o.rounds == 0)
         o.rounds = o.matrix ? 3 : 1;
-    sim_scene_t s;
-    if (sim_scene_load(&s, &o, err, sizeof err)) {
-        fprintf(stderr, "volfix-sim: %s\n", err);
-        return VFP_EXIT_ERR;
-    }
+    char err[VFP_ERR_LEN];
     variant_t v[MAX_VARIANTS];
     memset(v, 0, sizeof v);
     int count = 1;

@@ -23,18 +23,13 @@ static const char usage_head[] =
 
 int sim_cmd_compare(int argc, char **argv)
 {
-    char usage[4096], err[VFP_ERR_LEN], about[512];
-    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    vfp_status_t status = sim_parse(&o, argc, argv,
-                                    SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_DIFF | SIM_OPT_JSON | SIM_OPT_AGAINST, usage);
+    sim_scene_t scene;
+    vfp_status_t status = sim_scene_command(&o, &scene, argc, argv,
+                                            SIM_OPT_OUT | SIM_OPT_DIFF | SIM_OPT_JSON | SIM_OPT_AGAINST, usage_head);
     if (status)
         return vfp_exit_status(status);
-    sim_scene_t scene;
-    if (sim_scene_load(&scene, &o, err, sizeof err)) {
-        fprintf(stderr, "volfix-sim: %s\n", err);
-        return VFP_EXIT_ERR;
-    }
+    char err[VFP_ERR_LEN], about[512];
     vf_image_t core, ref;
     vf_factor_t factor;
     if (sim_render_core(&scene, &core, &factor, err, sizeof err)) {

@@ -56,25 +56,20 @@ static int run_gnuplot(const char *dir);
 
 int sim_cmd_ray(int argc, char **argv)
 {
-    char usage[4096], err[VFP_ERR_LEN], about[512];
-    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    vfp_status_t status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_PIXEL, usage);
+    sim_scene_t scene;
+    vfp_status_t status = sim_scene_command(&o, &scene, argc, argv, SIM_OPT_OUT | SIM_OPT_PIXEL, usage_head);
     if (status)
         return vfp_exit_status(status);
-    if (!o.out) {
-        fprintf(stderr, "volfix-sim ray: no output folder (-o DIR)\n");
+    if (!o.out || (mkdir(o.out, 0777) != 0 && errno != EEXIST)) {
+        if (!o.out)
+            fprintf(stderr, "volfix-sim ray: no output folder (-o DIR)\n");
+        else
+            fprintf(stderr, "volfix-sim: %s: cannot make the folder\n", o.out);
+        sim_scene_free(&scene);
         return VFP_EXIT_ERR;
     }
-    if (mkdir(o.out, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "volfix-sim: %s: cannot make the folder\n", o.out);
-        return VFP_EXIT_ERR;
-    }
-    sim_scene_t scene;
-    if (sim_scene_load(&scene, &o, err, sizeof err)) {
-        fprintf(stderr, "volfix-sim: %s\n", err);
-        return VFP_EXIT_ERR;
-    }
+    char about[512];
     double px = o.have_pixel ? o.pixel[0] : (o.width - 1) / 2.0, py = o.have_pixel ? o.pixel[1] : (o.height - 1) / 2.0;
     sim_ref_inputs_t in;
     truth_study_t st = {0};

@@ -18,22 +18,18 @@ static const char usage_head[] =
 
 int sim_cmd_render(int argc, char **argv)
 {
-    char usage[4096], err[VFP_ERR_LEN], about[512];
-    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    vfp_status_t status = sim_parse(&o, argc, argv,
-                                    SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_REF | SIM_OPT_TRUTH | SIM_OPT_HASH, usage);
+    sim_scene_t scene;
+    vfp_status_t status =
+        sim_scene_command(&o, &scene, argc, argv, SIM_OPT_OUT | SIM_OPT_REF | SIM_OPT_TRUTH | SIM_OPT_HASH, usage_head);
     if (status)
         return vfp_exit_status(status);
     if (!o.out && !o.hash) {
         fprintf(stderr, "volfix-sim render: no output file (-o OUT.png, or --hash)\n");
+        sim_scene_free(&scene);
         return VFP_EXIT_ERR;
     }
-    sim_scene_t scene;
-    if (sim_scene_load(&scene, &o, err, sizeof err)) {
-        fprintf(stderr, "volfix-sim: %s\n", err);
-        return VFP_EXIT_ERR;
-    }
+    char err[VFP_ERR_LEN], about[512];
     if (o.truth)
         scene.params.rays = 1; /* the truth has no intermediate image: --rays does not apply */
     vf_image_t img;

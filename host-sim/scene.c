@@ -19,6 +19,17 @@ vf_view_t sim_view(double azimuth, double elevation, double roll, double zoom)
     return v;
 }
 
+vfp_status_t sim_scene_command(sim_opts_t *opts, sim_scene_t *scene, int argc, char **argv, unsigned groups,
+                               const char *usage_head)
+{
+    char usage[4096], err[VFP_ERR_LEN];
+    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
+    vfp_status_t status = sim_parse(opts, argc, argv, SIM_OPT_SCENE | groups, usage);
+    if (status == VFP_OK && (status = sim_scene_load(scene, opts, err, sizeof err)) != VFP_OK)
+        fprintf(stderr, "volfix-sim: %s\n", err);
+    return status;
+}
+
 vfp_status_t sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen)
 {
     memset(s, 0, sizeof *s);
@@ -137,18 +148,43 @@ static void rgb_to_image(const sim_scene_t *s, const double *rgb, vf_image_t *im
         }
 }
 
+/* What the reference and the truth render from and into: their inputs, a frame of doubles, and the image it
+ * becomes. VFP_ERR with "out of memory for WHO" in err, with nothing left to free. */
+static vfp_status_t double_frame_begin(const sim_scene_t *s, const char *who, sim_ref_inputs_t *in, double **rgb,
+                                       vf_image_t *img, char *err, size_t errlen)
+{
+    in->scalars = NULL;
+    *rgb = malloc(sizeof(double) * 3 * s->width * s->height);
+    if (!*rgb || sim_ref_inputs(s, in) || sim_image_alloc(img, s->width, s->height, s->format)) {
+        free(*rgb);
+        sim_ref_inputs_free(in);
+        snprintf(err, errlen, "out of memory for %s", who);
+        return VFP_ERR;
+    }
+    return VFP_OK;
+}
+
+/* The frame becomes the image when the renderer succeeded (0), else the image is freed; the inputs and the frame
+ * are freed either way. */
+static vfp_status_t double_frame_end(const sim_scene_t *s, int rendered, sim_ref_inputs_t *in, double *rgb,
+                                     vf_image_t *img)
+{
+    if (rendered == 0)
+        rgb_to_image(s, rgb, img);
+    else
+        sim_image_free(img);
+    sim_ref_inputs_free(in);
+    free(rgb);
+    return rendered == 0 ? VFP_OK : VFP_ERR;
+}
+
 vfp_status_t sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, vf_image_t *img, char *err,
                                   size_t errlen)
 {
     sim_ref_inputs_t in;
-    in.scalars = NULL;
-    double *rgb = malloc(sizeof(double) * 3 * s->width * s->height);
-    if (!rgb || sim_ref_inputs(s, &in) || sim_image_alloc(img, s->width, s->height, s->format)) {
-        free(rgb);
-        sim_ref_inputs_free(&in);
-        snprintf(err, errlen, "out of memory for the reference");
+    double *rgb;
+    if (double_frame_begin(s, "the reference", &in, &rgb, img, err, errlen))
         return VFP_ERR;
-    }
     ref_params_t params = {0};
     params.mode = s->params.mode == VF_MODE_POINT ? REF_MODE_POINT
                   : s->params.mode == VF_MODE_PRECLASS ? REF_MODE_PRECLASS
@@ -175,42 +211,25 @@ vfp_status_t sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_
     int status = ref_render(&in.vol, in.tf, in.npoints, &params, &in.view, (int)s->width, (int)s->height, rgb,
                             NULL);
     free(offsets);
-    if (status == 0) {
-        rgb_to_image(s, rgb, img);
-    } else {
+    if (status)
         snprintf(err, errlen, status == -2 ? "the core's factorisation disagrees with the reference's (principal axis, "
                                              "flip or a slice offset more than 2^-16 apart)"
                                            : "the reference renderer failed (status %d)",
                  status);
-        sim_image_free(img);
-    }
-    sim_ref_inputs_free(&in);
-    free(rgb);
-    return status ? VFP_ERR : VFP_OK;
+    return double_frame_end(s, status, &in, rgb, img);
 }
 
 vfp_status_t sim_render_truth(const sim_scene_t *s, vf_image_t *img, char *err, size_t errlen)
 {
     sim_ref_inputs_t in;
-    in.scalars = NULL;
-    double *rgb = malloc(sizeof(double) * 3 * s->width * s->height);
-    if (!rgb || sim_ref_inputs(s, &in) || sim_image_alloc(img, s->width, s->height, s->format)) {
-        free(rgb);
-        sim_ref_inputs_free(&in);
-        snprintf(err, errlen, "out of memory for the ground truth");
+    double *rgb;
+    if (double_frame_begin(s, "the ground truth", &in, &rgb, img, err, errlen))
         return VFP_ERR;
-    }
     int status = truth_render(&in.vol, in.tf, in.npoints, in.background, &in.view, (int)s->width,
                               (int)s->height, s->threads, rgb);
-    if (status == 0) {
-        rgb_to_image(s, rgb, img);
-    } else {
+    if (status)
         snprintf(err, errlen, "the ground-truth ray caster failed (status %d)", status);
-        sim_image_free(img);
-    }
-    sim_ref_inputs_free(&in);
-    free(rgb);
-    return status ? VFP_ERR : VFP_OK;
+    return double_frame_end(s, status, &in, rgb, img);
 }
 
 void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)

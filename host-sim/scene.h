@@ -25,6 +25,12 @@ typedef struct sim_scene {
     int threads;
 } sim_scene_t;
 
+/* The start of a command that renders a scene: its options parsed (the usage is usage_head, then the scene options'
+ * help) and the scene loaded. Returns VFP_OK with the scene loaded (free it), VFP_HELP_SHOWN after printing the
+ * usage, or VFP_ERR after printing a one-line error. */
+vfp_status_t sim_scene_command(sim_opts_t *opts, sim_scene_t *scene, int argc, char **argv, unsigned groups,
+                               const char *usage_head);
+
 /* Load the volume and transfer function the options name. Returns VFP_OK, or VFP_ERR with err. */
 vfp_status_t sim_scene_load(sim_scene_t *scene, const sim_opts_t *opts, char *err, size_t errlen);
 void sim_scene_free(sim_scene_t *scene);
