@@ -108,3 +108,13 @@ vfp_status_t vfp_display_check_rect(const vfp_display_t *d, const char *name, ui
     }
     return VFP_OK;
 }
+
+vfp_status_t vfp_display_check_present(const vfp_display_t *d, const char *name, uint32_t x, uint32_t y, uint32_t w,
+                                       uint32_t h, uint32_t stride, char *err, size_t errlen)
+{
+    if (!d->priv) {
+        snprintf(err, errlen, "%s display: present on a display that is not open", d->ops->name);
+        return VFP_ERR;
+    }
+    return vfp_display_check_rect(d, name, x, y, w, h, stride, err, errlen);
+}

@@ -51,6 +51,12 @@ const vfp_display_ops_t *vfp_display_find(const char *name, const vfp_board_t *b
 vfp_status_t vfp_display_check_rect(const vfp_display_t *d, const char *name, uint32_t x, uint32_t y, uint32_t w,
                                     uint32_t h, uint32_t stride, char *err, size_t errlen);
 
+/* For backends, what present() checks first: that the display is open (d->priv set; else VFP_ERR with "OPS
+ * display: present on a display that is not open", OPS the backend's name) and vfp_display_check_rect. name is
+ * the backend's name for the device, NULL when d->priv is. */
+vfp_status_t vfp_display_check_present(const vfp_display_t *d, const char *name, uint32_t x, uint32_t y, uint32_t w,
+                                       uint32_t h, uint32_t stride, char *err, size_t errlen);
+
 /* The backends compiled in, NULL-terminated. */
 extern const vfp_display_ops_t *const vfp_displays[];
 

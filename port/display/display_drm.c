@@ -102,11 +102,7 @@ static vfp_status_t drm_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32
                                 uint32_t stride, char *err, size_t errlen)
 {
     drm_display_t *m = d->priv;
-    if (!m) {
-        snprintf(err, errlen, "drm display: present on a display that is not open");
-        return VFP_ERR;
-    }
-    if (vfp_display_check_rect(d, m->path, x, y, w, h, stride, err, errlen))
+    if (vfp_display_check_present(d, m ? m->path : NULL, x, y, w, h, stride, err, errlen))
         return VFP_ERR;
     if (w == 0 || h == 0)
         return VFP_OK;

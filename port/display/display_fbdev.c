@@ -177,11 +177,7 @@ static vfp_status_t fbdev_present(vfp_display_t *d, uint32_t x, uint32_t y, uint
                                   uint32_t stride, char *err, size_t errlen)
 {
     fbdev_t *fb = d->priv;
-    if (!fb) {
-        snprintf(err, errlen, "fbdev display: present on a display that is not open");
-        return VFP_ERR;
-    }
-    if (vfp_display_check_rect(d, fb->name, x, y, w, h, stride, err, errlen))
+    if (vfp_display_check_present(d, fb ? fb->name : NULL, x, y, w, h, stride, err, errlen))
         return VFP_ERR;
     size_t offset = (size_t)x * fb->bytes, row_bytes = (size_t)w * fb->bytes;
     for (uint32_t row = y; row < y + h; row++)

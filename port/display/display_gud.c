@@ -179,15 +179,11 @@ static vfp_status_t gud_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32
                                 uint32_t stride, char *err, size_t errlen)
 {
     gud_t *g = d->priv;
-    if (!g) {
-        snprintf(err, errlen, "gud display: present on a display that is not open");
-        return VFP_ERR;
-    }
-    if (g->lost) {
+    if (g && g->lost) {
         snprintf(err, errlen, "%s: display gone", g->name);
         return VFP_DISPLAY_LOST;
     }
-    if (vfp_display_check_rect(d, g->name, x, y, w, h, stride, err, errlen))
+    if (vfp_display_check_present(d, g ? g->name : NULL, x, y, w, h, stride, err, errlen))
         return VFP_ERR;
     if (w == 0 || h == 0)
         return VFP_OK;

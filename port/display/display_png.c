@@ -105,11 +105,7 @@ static vfp_status_t png_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32
 {
     png_display_t *p = d->priv;
     uint32_t bytes = vf_format_bytes(d->format);
-    if (!p) {
-        snprintf(err, errlen, "png display: present on a display that is not open");
-        return VFP_ERR;
-    }
-    if (vfp_display_check_rect(d, p->dir, x, y, w, h, stride, err, errlen))
+    if (vfp_display_check_present(d, p ? p->dir : NULL, x, y, w, h, stride, err, errlen))
         return VFP_ERR;
     for (uint32_t row = y; row < y + h; row++)
         memcpy(p->frame + (size_t)row * p->stride + (size_t)x * bytes,

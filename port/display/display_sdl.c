@@ -142,11 +142,7 @@ static vfp_status_t sdl_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32
 {
     sdl_display_t *s = d->priv;
     uint32_t bytes = vf_format_bytes(d->format);
-    if (!s) {
-        snprintf(err, errlen, "sdl display: present on a display that is not open");
-        return VFP_ERR;
-    }
-    if (vfp_display_check_rect(d, "sdl display", x, y, w, h, stride, err, errlen))
+    if (vfp_display_check_present(d, "sdl display", x, y, w, h, stride, err, errlen))
         return VFP_ERR;
     if (w == 0 || h == 0)
         return VFP_OK;

@@ -8,24 +8,8 @@
 #include "check.h"
 #include "display/display.h"
 #include "display/display_backends.h" /* the png backend's table */
+#include "fixtures.h"
 #include "io/pngio.h"
-
-static char tmp_dir[64];
-
-/* A fresh directory name under the test's temporary directory (not created). */
-static const char *path_in_tmp(const char *name)
-{
-    static char path[256];
-    if (!tmp_dir[0]) {
-        snprintf(tmp_dir, sizeof tmp_dir, "/tmp/volfix-png-XXXXXX");
-        if (!mkdtemp(tmp_dir)) {
-            perror("mkdtemp");
-            exit(2);
-        }
-    }
-    snprintf(path, sizeof path, "%s/%s", tmp_dir, name);
-    return path;
-}
 
 static vfp_board_t board_for(const char *dir, uint32_t w, uint32_t h, vf_format_t format)
 {
@@ -66,7 +50,7 @@ static int read_frame(const char *dir, unsigned n, uint8_t *rgb, uint32_t w, uin
 static void frames_numbered(void)
 {
     char dir[256];
-    snprintf(dir, sizeof dir, "%s", path_in_tmp("numbered"));
+    snprintf(dir, sizeof dir, "%s", fx_path("numbered"));
     vfp_board_t b = board_for(dir, 3, 2, VF_FORMAT_RGB888);
     vfp_display_t d = {&vfp_display_png_ops, 0, 0, 0, NULL};
     char err[256] = "";
@@ -95,7 +79,7 @@ static void frames_numbered(void)
 static void pixels_rgb888(void)
 {
     char dir[256];
-    snprintf(dir, sizeof dir, "%s", path_in_tmp("rgb888"));
+    snprintf(dir, sizeof dir, "%s", fx_path("rgb888"));
     vfp_board_t b = board_for(dir, 2, 2, VF_FORMAT_RGB888);
     vfp_display_t d = {&vfp_display_png_ops, 0, 0, 0, NULL};
     char err[256] = "";
@@ -113,7 +97,7 @@ static void pixels_rgb888(void)
 static void pixels_rgb565(void)
 {
     char dir[256];
-    snprintf(dir, sizeof dir, "%s", path_in_tmp("rgb565"));
+    snprintf(dir, sizeof dir, "%s", fx_path("rgb565"));
     vfp_board_t b = board_for(dir, 3, 2, VF_FORMAT_RGB565);
     vfp_display_t d = {&vfp_display_png_ops, 0, 0, 0, NULL};
     char err[256] = "";
@@ -133,7 +117,7 @@ static void pixels_rgb565(void)
 static void pixels_xrgb8888(void)
 {
     char dir[256];
-    snprintf(dir, sizeof dir, "%s", path_in_tmp("xrgb8888"));
+    snprintf(dir, sizeof dir, "%s", fx_path("xrgb8888"));
     vfp_board_t b = board_for(dir, 2, 1, VF_FORMAT_XRGB8888);
     vfp_display_t d = {&vfp_display_png_ops, 0, 0, 0, NULL};
     char err[256] = "";
@@ -152,7 +136,7 @@ static void pixels_xrgb8888(void)
 static void sub_rectangle(void)
 {
     char dir[256];
-    snprintf(dir, sizeof dir, "%s", path_in_tmp("sub"));
+    snprintf(dir, sizeof dir, "%s", fx_path("sub"));
     vfp_board_t b = board_for(dir, 4, 3, VF_FORMAT_RGB888);
     vfp_display_t d = {&vfp_display_png_ops, 0, 0, 0, NULL};
     char err[256] = "";
@@ -183,7 +167,7 @@ static void default_directory(void)
 {
     char cwd[512];
     CHECK(getcwd(cwd, sizeof cwd) != NULL);
-    const char *base = path_in_tmp("default");
+    const char *base = fx_path("default");
     CHECK(mkdir(base, 0777) == 0);
     CHECK(chdir(base) == 0);
     vfp_board_t b = board_for("", 1, 1, VF_FORMAT_RGB565);
@@ -202,7 +186,7 @@ static void default_directory(void)
 static void bad_directory(void)
 {
     char file[256];
-    snprintf(file, sizeof file, "%s", path_in_tmp("plain-file"));
+    snprintf(file, sizeof file, "%s", fx_path("plain-file"));
     FILE *f = fopen(file, "w");
     CHECK(f != NULL);
     fclose(f);
@@ -220,7 +204,7 @@ static void bad_directory(void)
     CHECK_EQ(d.ops->open(&d, &b, err, sizeof err), 2);
     CHECK_MSG(strstr(err, "plain-file/frames: cannot create directory: Not a directory") != NULL, "%s", err);
 
-    b = board_for(path_in_tmp("nosize"), 0, 4, VF_FORMAT_RGB888);
+    b = board_for(fx_path("nosize"), 0, 4, VF_FORMAT_RGB888);
     CHECK_EQ(d.ops->open(&d, &b, err, sizeof err), 2);
     CHECK_MSG(strstr(err, "needs a size") != NULL, "%s", err);
     d.ops->close(&d); /* safe on a display that never opened */
@@ -228,7 +212,7 @@ static void bad_directory(void)
 
 static void bad_rectangle(void)
 {
-    vfp_board_t b = board_for(path_in_tmp("rect"), 4, 4, VF_FORMAT_RGB565);
+    vfp_board_t b = board_for(fx_path("rect"), 4, 4, VF_FORMAT_RGB565);
     vfp_display_t d = {&vfp_display_png_ops, 0, 0, 0, NULL};
     char err[512] = "";
     CHECK_MSG(d.ops->open(&d, &b, err, sizeof err) == 0, "%s", err);
@@ -246,15 +230,4 @@ CHECK_CASES({"frames_numbered", frames_numbered}, {"pixels_rgb888", pixels_rgb88
             {"sub_rectangle", sub_rectangle}, {"default_directory", default_directory},
             {"bad_directory", bad_directory}, {"bad_rectangle", bad_rectangle});
 
-int main(int argc, char **argv)
-{
-    int status = check_main("display_png", check_cases_, (int)(sizeof check_cases_ / sizeof check_cases_[0]), argc,
-                            argv);
-    if (tmp_dir[0]) {
-        char cmd[128];
-        snprintf(cmd, sizeof cmd, "rm -rf '%s'", tmp_dir);
-        if (system(cmd) != 0)
-            fprintf(stderr, "could not remove %s\n", tmp_dir);
-    }
-    return status;
-}
+CHECK_RUN("display_png")

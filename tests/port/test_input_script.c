@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "fixtures.h"
 #include "input/input.h"
 #include "input/input_backends.h" /* the seam in port/input/input_script.c */
 
@@ -162,14 +163,7 @@ static void bad_lines(void)
 
 static void open_from_file(void)
 {
-    char dir[] = "/tmp/volfix-script-XXXXXX";
-    CHECK(mkdtemp(dir));
-    char path[256];
-    snprintf(path, sizeof path, "%s/demo.script", dir);
-    FILE *f = fopen(path, "w");
-    CHECK(f);
-    fputs("0 turn 1 4\n20 press 0\n", f);
-    fclose(f);
+    const char *path = fx_write("demo.script", "0 turn 1 4\n20 press 0\n", NULL, 0);
 
     vfp_board_t b = board_2x2();
     char err[256] = "";
@@ -181,10 +175,8 @@ static void open_from_file(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     uint64_t before = (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-    int status = ops->open(&in, &b, path, err, sizeof err);
-    unlink(path);
-    rmdir(dir);
-    CHECK_MSG(status == 0, "%s", err);
+    vfp_status_t status = ops->open(&in, &b, path, err, sizeof err);
+    CHECK_MSG(status == VFP_OK, "%s", err);
     uint64_t t0 = ops->deadline_ns(&in);
     CHECK(t0 >= before);
     vfp_event_t ev[4];
