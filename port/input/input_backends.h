@@ -25,6 +25,16 @@ extern const vfp_input_ops_t vfp_input_sdl_ops; /* input_sdl.c */
 extern const vfp_input_ops_t vfp_input_script_ops; /* input_script.c */
 
 /* ---------------------------------------------------------------------------------------------------------- */
+/* input.c: the report step of "drain, accumulate, report" that the GPIO decoder and evdev share. Their events
+ * wait in a queue in arrival order, and a knob's turns since the last read add up in one event, the one
+ * turn_slot[knob] points at (-1: none). */
+
+/* Moves the queue's first events (at most max) to events, leaving out turns that added up to nothing, and points
+ * turn_slot at the turns that stay queued. Returns how many went out. */
+int vfpi_events_report(vfp_event_t *queue, int *queued, int *turn_slot, int knob_count, vfp_event_t *events,
+                       int max);
+
+/* ---------------------------------------------------------------------------------------------------------- */
 /* input_evdev.c: open from descriptors the caller opened (pipes in tests), one per distinct device of the board,
  * in the order the board first names them. The input owns the fds from here on, also when this fails. */
 

@@ -194,19 +194,7 @@ static int evdev_read(vfp_input_t *in, vfp_event_t *events, int max, uint64_t no
         return -1;
     }
 
-    /* report: the queue's first events, turns that summed to nothing left out */
-    int n = 0, i = 0;
-    for (; i < e->queued && n < max; i++)
-        if (e->queue[i].type != VFP_EV_TURN || e->queue[i].steps != 0)
-            events[n++] = e->queue[i];
-    memmove(e->queue, e->queue + i, sizeof e->queue[0] * (size_t)(e->queued - i));
-    e->queued -= i;
-    for (int k = 0; k < e->knob_count; k++)
-        e->turn_slot[k] = -1;
-    for (int j = 0; j < e->queued; j++)
-        if (e->queue[j].type == VFP_EV_TURN)
-            e->turn_slot[e->queue[j].control] = j;
-    return n;
+    return vfpi_events_report(e->queue, &e->queued, e->turn_slot, e->knob_count, events, max);
 }
 
 static void evdev_close(vfp_input_t *in)
