@@ -2,7 +2,7 @@
  * display_sdl.c: an SDL2 window titled "volfix" on a desktop, board width x height (shown twice as large when the
  * longer side is under 320 pixels, so a small panel's layout stays readable). Frames go into a streaming texture
  * in the board's format and are rendered at once. Closing the window is an input event: input_sdl.c polls SDL's
- * events; this file only shares SDL's initialisation with it (sdl_shared.h).
+ * events; this file only shares SDL's initialisation with it (sdl_video.h).
  */
 #ifdef VFP_HAVE_SDL
 
@@ -11,7 +11,7 @@
  *********************/
 #include "display.h"
 #include "display_backends.h"
-#include "sdl_shared.h"
+#include "sdl_video.h"
 
 #include <SDL.h>
 #include <stdio.h>
@@ -45,7 +45,7 @@ static Uint32 sdl_format(vf_format_t format);
 /**********************
  *  STATIC VARIABLES
  **********************/
-/* References to SDL's video subsystem (sdl_shared.h). SDL's own state is process-wide, so this count is too;
+/* References to SDL's video subsystem (sdl_video.h). SDL's own state is process-wide, so this count is too;
  * it is only touched from the viewer's thread. */
 static int sdl_users;
 

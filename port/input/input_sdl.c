@@ -1,5 +1,5 @@
 /* input_sdl.c: the keys of the SDL window (VFP_HAVE_SDL) as knobs and buttons, for a desktop. The window belongs to
- * the SDL display (display_sdl.c); SDL itself is shared through sdl_shared.h. A key press of a knob's key_up or
+ * the SDL display (display_sdl.c); SDL itself is shared through sdl_video.h. A key press of a knob's key_up or
  * key_down turns it one detent (held down, the key's auto-repeat keeps turning it); a button's key gives press and
  * release; closing the window is VFP_EV_QUIT.
  *
@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "display/sdl_shared.h"
+#include "display/sdl_video.h"
 
 #define POLL_NS 10000000u /* how often the viewer should look at SDL's queue */
 
