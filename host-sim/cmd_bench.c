@@ -108,13 +108,13 @@ static size_t memory_available(void)
     return (size_t)(kb * 1024);
 }
 
-static int variants_alloc(variant_t *v, int count, const plan_t *p)
+static vfp_status_t variants_alloc(variant_t *v, int count, const plan_t *p)
 {
     for (int c = 0; c < count; c++) {
         size_t n = (size_t)p->rounds * (5 + (size_t)p->frames);
         double *block = calloc(n, sizeof *block);
         if (!block)
-            return 2;
+            return VFP_ERR;
         v[c].round_mean = block;
         v[c].round_tables = block + p->rounds;
         v[c].round_composite = block + 2 * p->rounds;
@@ -122,7 +122,7 @@ static int variants_alloc(variant_t *v, int count, const plan_t *p)
         v[c].ratio = block + 4 * p->rounds;
         v[c].frame_ms = block + 5 * p->rounds;
     }
-    return 0;
+    return VFP_OK;
 }
 
 static void variants_free(variant_t *v, int count)
@@ -134,17 +134,17 @@ static void variants_free(variant_t *v, int count)
     }
 }
 
-/* Create a variant's renderer and give it the window and transfer function. Returns 0, or 2 with err and the
+/* Create a variant's renderer and give it the window and transfer function. Returns VFP_OK, or VFP_ERR with err and the
  * renderer closed (a failed one is never asked for its memory). */
-static int setup(const sim_scene_t *s, variant_t *v, char *err, size_t errlen)
+static vfp_status_t setup(const sim_scene_t *s, variant_t *v, char *err, size_t errlen)
 {
-    int status = vfp_render_open(&v->r, &v->params, &s->vol.core, s->threads, err, errlen);
+    vfp_status_t status = vfp_render_open(&v->r, &v->params, &s->vol.core, s->threads, err, errlen);
     double window_ms = 0, classify_ms = 0;
-    if (status == 0) {
+    if (status == VFP_OK) {
         status = vfp_render_set_window(&v->r, s->window, err, errlen);
         window_ms = v->r.ms_classify;
     }
-    if (status == 0) {
+    if (status == VFP_OK) {
         status = vfp_render_set_tf(&v->r, s->points, s->npoints, err, errlen);
         classify_ms = v->r.ms_classify;
     }
@@ -171,15 +171,15 @@ static void teardown(variant_t *v)
 }
 
 /* One round of one variant: a warm-up frame one step before the first timed view (so that every timed frame
- * is a new view), then the rotation. Returns 0, or 2 with err. */
-static int time_round(const sim_opts_t *o, variant_t *v, int round, const vf_image_t *img, char *err,
-                      size_t errlen)
+ * is a new view), then the rotation. Returns VFP_OK, or VFP_ERR with err. */
+static vfp_status_t time_round(const sim_opts_t *o, variant_t *v, int round, const vf_image_t *img, char *err,
+                               size_t errlen)
 {
     vf_view_t before = sim_view(o->azimuth - 2.0, o->elevation, o->roll, o->zoom);
-    int status = vfp_render_frame(&v->r, &before, img, err, errlen);
+    vfp_status_t status = vfp_render_frame(&v->r, &before, img, err, errlen);
     double *ms = v->frame_ms + (size_t)round * o->frames;
     double sum = 0, tables = 0, composite = 0, warp = 0;
-    for (int f = 0; status == 0 && f < o->frames; f++) {
+    for (int f = 0; status == VFP_OK && f < o->frames; f++) {
         vf_view_t view = sim_view(o->azimuth + 2.0 * f, o->elevation, o->roll, o->zoom);
         double t0 = vfp_now_ms();
         status = vfp_render_frame(&v->r, &view, img, err, errlen);
@@ -197,9 +197,9 @@ static int time_round(const sim_opts_t *o, variant_t *v, int round, const vf_ima
 }
 
 /* Decide whether every renderer can be set up at once: their arenas together within half the memory available
- * (the machine is shared), or unknown memory. Returns 0, or 2 with err. */
-static int make_plan(const sim_scene_t *s, variant_t *v, int count, const sim_opts_t *o, plan_t *p, char *err,
-                     size_t errlen)
+ * (the machine is shared), or unknown memory. Returns VFP_OK, or VFP_ERR with err. */
+static vfp_status_t make_plan(const sim_scene_t *s, variant_t *v, int count, const sim_opts_t *o, plan_t *p, char *err,
+                              size_t errlen)
 {
     *p = (plan_t){.rounds = o->rounds, .frames = o->frames, .count = count};
     for (int c = 0; c < count; c++) {
@@ -207,14 +207,14 @@ static int make_plan(const sim_scene_t *s, variant_t *v, int count, const sim_op
         vf_status_t st = vf_renderer_bytes(&v[c].params, &s->vol.core, &fixed);
         if (st != VF_OK) {
             snprintf(err, errlen, "cannot render this volume: %s", vf_status_text(st));
-            return 2;
+            return VFP_ERR;
         }
         v[c].arena_estimate = fixed + fixed / 4; /* as vfp_render_open reserves */
         p->total_bytes += v[c].arena_estimate;
     }
     p->available_bytes = memory_available();
     p->all_at_once = count == 1 || p->available_bytes == 0 || p->total_bytes <= p->available_bytes / 2;
-    return 0;
+    return VFP_OK;
 }
 
 /* The variant a round starts with: the table order rotated so that each variant takes a different place in
@@ -224,38 +224,38 @@ static int round_start(const plan_t *p, int round)
     return (int)((long)round * p->count / p->rounds % p->count);
 }
 
-/* Every round, every variant; ratios to the first variant per round. Returns 0, or 2 with err. */
-static int measure(const sim_scene_t *s, const sim_opts_t *o, variant_t *v, const plan_t *p, int progress,
-                   char *err, size_t errlen)
+/* Every round, every variant; ratios to the first variant per round. Returns VFP_OK, or VFP_ERR with err. */
+static vfp_status_t measure(const sim_scene_t *s, const sim_opts_t *o, variant_t *v, const plan_t *p, int progress,
+                            char *err, size_t errlen)
 {
     vf_image_t img;
     if (sim_image_alloc(&img, s->width, s->height, s->format)) {
         snprintf(err, errlen, "out of memory for a %ux%u image", s->width, s->height);
-        return 2;
+        return VFP_ERR;
     }
-    int status = 0;
-    for (int c = 0; status == 0 && p->all_at_once && c < p->count; c++)
+    vfp_status_t status = VFP_OK;
+    for (int c = 0; status == VFP_OK && p->all_at_once && c < p->count; c++)
         status = setup(s, &v[c], err, errlen);
     double start = vfp_now_ms();
-    for (int round = 0; status == 0 && round < p->rounds; round++) {
+    for (int round = 0; status == VFP_OK && round < p->rounds; round++) {
         int first = round_start(p, round);
         double t0 = vfp_now_ms();
-        for (int i = 0; status == 0 && i < p->count; i++) {
+        for (int i = 0; status == VFP_OK && i < p->count; i++) {
             variant_t *x = &v[(first + i) % p->count];
             if (!x->open)
                 status = setup(s, x, err, errlen);
-            if (status == 0)
+            if (status == VFP_OK)
                 status = time_round(o, x, round, &img, err, errlen);
             if (!p->all_at_once)
                 teardown(x);
         }
-        if (status == 0 && progress)
+        if (status == VFP_OK && progress)
             fprintf(stderr, "volfix-sim bench: round %d of %d done in %.1f s (%.0f s so far)\n", round + 1,
                     p->rounds, (vfp_now_ms() - t0) / 1000, (vfp_now_ms() - start) / 1000);
     }
     for (int c = 0; c < p->count; c++) {
         teardown(&v[c]); /* keeps the memory report of the open ones */
-        for (int round = 0; status == 0 && round < p->rounds; round++)
+        for (int round = 0; status == VFP_OK && round < p->rounds; round++)
             v[c].ratio[round] = v[0].round_mean[round] / v[c].round_mean[round];
     }
     sim_image_free(&img);
@@ -435,20 +435,15 @@ static int matrix_variants(const vf_params_t *scene_params, variant_t *v)
 
 int sim_cmd_bench(int argc, char **argv)
 {
-    char usage[4096], err[VFP_ERR_LEN];
-    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    int status = sim_parse(&o, argc, argv,
-                           SIM_OPT_SCENE | SIM_OPT_JSON | SIM_OPT_FRAMES | SIM_OPT_MATRIX | SIM_OPT_ROUNDS, usage);
+    sim_scene_t s;
+    unsigned groups = SIM_OPT_JSON | SIM_OPT_FRAMES | SIM_OPT_MATRIX | SIM_OPT_ROUNDS;
+    vfp_status_t status = sim_scene_command(&o, &s, argc, argv, groups, usage_head);
     if (status)
-        return status == 1 ? 0 : 2;
+        return vfp_exit_status(status);
     if (o.rounds == 0)
         o.rounds = o.matrix ? 3 : 1;
-    sim_scene_t s;
-    if (sim_scene_load(&s, &o, err, sizeof err)) {
-        fprintf(stderr, "volfix-sim: %s\n", err);
-        return 2;
-    }
+    char err[VFP_ERR_LEN];
     variant_t v[MAX_VARIANTS];
     memset(v, 0, sizeof v);
     int count = 1;
@@ -458,11 +453,11 @@ int sim_cmd_bench(int argc, char **argv)
         v[0].params = s.params;
     plan_t p;
     status = make_plan(&s, v, count, &o, &p, err, sizeof err);
-    if (status == 0 && variants_alloc(v, count, &p)) {
+    if (status == VFP_OK && variants_alloc(v, count, &p)) {
         snprintf(err, sizeof err, "out of memory");
-        status = 2;
+        status = VFP_ERR;
     }
-    if (status == 0)
+    if (status == VFP_OK)
         status = measure(&s, &o, v, &p, o.matrix || p.rounds > 1, err, sizeof err);
     if (status)
         fprintf(stderr, "volfix-sim: %s\n", err);
@@ -472,5 +467,5 @@ int sim_cmd_bench(int argc, char **argv)
         print_one(&s, &v[0], &p, o.json);
     variants_free(v, count);
     sim_scene_free(&s);
-    return status ? 2 : 0;
+    return vfp_exit_status(status);
 }

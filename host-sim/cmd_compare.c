@@ -23,37 +23,32 @@ static const char usage_head[] =
 
 int sim_cmd_compare(int argc, char **argv)
 {
-    char usage[4096], err[VFP_ERR_LEN], about[512];
-    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_DIFF | SIM_OPT_JSON | SIM_OPT_AGAINST,
-                           usage);
-    if (status)
-        return status == 1 ? 0 : 2;
     sim_scene_t scene;
-    if (sim_scene_load(&scene, &o, err, sizeof err)) {
-        fprintf(stderr, "volfix-sim: %s\n", err);
-        return 2;
-    }
+    vfp_status_t status = sim_scene_command(&o, &scene, argc, argv,
+                                            SIM_OPT_OUT | SIM_OPT_DIFF | SIM_OPT_JSON | SIM_OPT_AGAINST, usage_head);
+    if (status)
+        return vfp_exit_status(status);
+    char err[VFP_ERR_LEN], about[512];
     vf_image_t core, ref;
     vf_factor_t factor;
     if (sim_render_core(&scene, &core, &factor, err, sizeof err)) {
         fprintf(stderr, "volfix-sim: %s\n", err);
         sim_scene_free(&scene);
-        return 2;
+        return VFP_EXIT_ERR;
     }
     if (o.truth ? sim_render_truth(&scene, &ref, err, sizeof err)
                 : sim_render_reference(&scene, &factor, &ref, err, sizeof err)) {
         fprintf(stderr, "volfix-sim: %s\n", err);
         sim_image_free(&core);
         sim_scene_free(&scene);
-        return 2;
+        return VFP_EXIT_ERR;
     }
     size_t pixels = (size_t)scene.width * scene.height;
     uint8_t *a = malloc(pixels * 3), *b = malloc(pixels * 3);
     if (!a || !b) {
         fprintf(stderr, "volfix-sim: out of memory\n");
-        status = 2;
+        status = VFP_ERR;
         goto done;
     }
     vfp_image_to_rgb(&core, a);
@@ -75,14 +70,14 @@ int sim_cmd_compare(int argc, char **argv)
     }
     if (o.out && vfp_png_write(o.out, &core, err, sizeof err)) {
         fprintf(stderr, "volfix-sim: %s\n", err);
-        status = 2;
+        status = VFP_ERR;
     }
     if (o.diff) {
         uint8_t *pic = malloc(pixels * 3);
         if (!pic || (sim_diff_image(a, b, pixels, 32, pic), vfp_png_write_rgb(o.diff, pic, scene.width, scene.height,
                                                                             err, sizeof err))) {
             fprintf(stderr, "volfix-sim: %s\n", pic ? err : "out of memory");
-            status = 2;
+            status = VFP_ERR;
         }
         free(pic);
     }
@@ -92,5 +87,5 @@ done:
     sim_image_free(&core);
     sim_image_free(&ref);
     sim_scene_free(&scene);
-    return status;
+    return vfp_exit_status(status);
 }

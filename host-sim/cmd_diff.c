@@ -26,7 +26,7 @@ int sim_cmd_diff(int argc, char **argv)
         char *end;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
-            return 0;
+            return VFP_EXIT_OK;
         } else if (strcmp(a, "--json") == 0) {
             json = 1;
         } else if (strcmp(a, "--diff") == 0 && v) {
@@ -37,28 +37,28 @@ int sim_cmd_diff(int argc, char **argv)
             files[nfiles++] = a;
         } else {
             fprintf(stderr, "volfix-sim: diff: unexpected '%s' (see volfix-sim diff --help)\n", a);
-            return 2;
+            return VFP_EXIT_ERR;
         }
     }
     if (nfiles != 2) {
         fprintf(stderr, "volfix-sim: diff: expected two PNG files (see volfix-sim diff --help)\n");
-        return 2;
+        return VFP_EXIT_ERR;
     }
     char err[VFP_ERR_LEN];
     uint8_t *img[2] = {NULL, NULL};
     uint32_t w[2], h[2];
-    int status = 0;
-    for (int k = 0; k < 2 && !status; k++)
+    int exit_status = VFP_EXIT_OK;
+    for (int k = 0; k < 2 && !exit_status; k++)
         if (vfp_png_read_rgb(files[k], &img[k], &w[k], &h[k], err, sizeof err)) {
             fprintf(stderr, "volfix-sim: %s\n", err);
-            status = 2;
+            exit_status = VFP_EXIT_ERR;
         }
-    if (!status && (w[0] != w[1] || h[0] != h[1])) {
+    if (!exit_status && (w[0] != w[1] || h[0] != h[1])) {
         fprintf(stderr, "volfix-sim: %s is %ux%u but %s is %ux%u (expected one size)\n", files[0], w[0], h[0],
                 files[1], w[1], h[1]);
-        status = 2;
+        exit_status = VFP_EXIT_ERR;
     }
-    if (!status) {
+    if (!exit_status) {
         size_t pixels = (size_t)w[0] * h[0];
         sim_diff_t d;
         sim_diff(img[0], img[1], pixels, &d);
@@ -74,14 +74,14 @@ int sim_cmd_diff(int argc, char **argv)
             if (!pic || (sim_diff_image(img[0], img[1], pixels, 32, pic),
                          vfp_png_write_rgb(diff_png, pic, w[0], h[0], err, sizeof err))) {
                 fprintf(stderr, "volfix-sim: %s\n", pic ? err : "out of memory");
-                status = 2;
+                exit_status = VFP_EXIT_ERR;
             }
             free(pic);
         }
-        if (!status && max >= 0 && d.max_abs[3] > max)
-            status = 1;
+        if (!exit_status && max >= 0 && d.max_abs[3] > max)
+            exit_status = SIM_EXIT_DIFFERENT;
     }
     free(img[0]);
     free(img[1]);
-    return status;
+    return exit_status;
 }

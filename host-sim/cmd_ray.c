@@ -5,6 +5,7 @@
  */
 #include <errno.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -15,6 +16,7 @@
 #include "truth/truth.h"
 
 #define PER_VOXEL 64 /* signal points per slice in ray.csv */
+#define NOT_INSTALLED 127 /* the exit status of a command the shell (here execlp) does not find */
 
 static const char usage_head[] =
     "usage: volfix-sim ray VOLUME [options] [--pixel X,Y] -o DIR\n"
@@ -49,39 +51,34 @@ static const char script[] =
     "     '' using 1:8 with lines lc rgb '#7570b3' title 'order 2'\n"
     "unset multiplot\n";
 
-static int write_files(const char *dir, const truth_study_t *st, const char *about);
+static vfp_status_t write_files(const char *dir, const truth_study_t *st, const char *about);
 static int run_gnuplot(const char *dir);
 
 int sim_cmd_ray(int argc, char **argv)
 {
-    char usage[4096], err[VFP_ERR_LEN], about[512];
-    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_PIXEL, usage);
-    if (status)
-        return status == 1 ? 0 : 2;
-    if (!o.out) {
-        fprintf(stderr, "volfix-sim ray: no output folder (-o DIR)\n");
-        return 2;
-    }
-    if (mkdir(o.out, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "volfix-sim: %s: cannot make the folder\n", o.out);
-        return 2;
-    }
     sim_scene_t scene;
-    if (sim_scene_load(&scene, &o, err, sizeof err)) {
-        fprintf(stderr, "volfix-sim: %s\n", err);
-        return 2;
+    vfp_status_t status = sim_scene_command(&o, &scene, argc, argv, SIM_OPT_OUT | SIM_OPT_PIXEL, usage_head);
+    if (status)
+        return vfp_exit_status(status);
+    if (!o.out || (mkdir(o.out, 0777) != 0 && errno != EEXIST)) {
+        if (!o.out)
+            fprintf(stderr, "volfix-sim ray: no output folder (-o DIR)\n");
+        else
+            fprintf(stderr, "volfix-sim: %s: cannot make the folder\n", o.out);
+        sim_scene_free(&scene);
+        return VFP_EXIT_ERR;
     }
+    char about[512];
     double px = o.have_pixel ? o.pixel[0] : (o.width - 1) / 2.0, py = o.have_pixel ? o.pixel[1] : (o.height - 1) / 2.0;
     sim_ref_inputs_t in;
     truth_study_t st = {0};
     if (sim_ref_inputs(&scene, &in)) {
         fprintf(stderr, "volfix-sim: out of memory\n");
         sim_scene_free(&scene);
-        return 2;
+        return VFP_EXIT_ERR;
     }
-    status = truth_study_ray(&in.vol, &in.view, (int)o.width, (int)o.height, px, py, PER_VOXEL, &st);
+    int traced = truth_study_ray(&in.vol, &in.view, (int)o.width, (int)o.height, px, py, PER_VOXEL, &st);
     /* what the ray depends on: not the transfer function or the mode */
     const char *base = strrchr(scene.vol.name, '/');
     char view[64];
@@ -90,17 +87,17 @@ int sim_cmd_ray(int argc, char **argv)
              o.height, view, o.zoom, scene.window.lo, scene.window.hi);
     sim_ref_inputs_free(&in);
     sim_scene_free(&scene);
-    if (status != 0) {
+    if (traced != 0) {
         fprintf(stderr, "volfix-sim: pixel %g,%g: %s\n", px, py,
-                status > 0 ? "the ray misses the volume or crosses fewer than 4 of its slices (try a pixel nearer the "
+                traced > 0 ? "the ray misses the volume or crosses fewer than 4 of its slices (try a pixel nearer the "
                              "centre)"
                            : "out of memory");
-        return 2;
+        return VFP_EXIT_ERR;
     }
     char title[700];
     snprintf(title, sizeof title, "%s, pixel %g,%g", about, px, py);
     status = write_files(o.out, &st, title);
-    if (status == 0) {
+    if (status == VFP_OK) {
         printf("%s: ray through slices k %.2f..%.2f along %c%s (slab %.4f d_ref); reconstructions compared on "
                "k %g..%g\n",
                title, st.k_in, st.k_out, "xyz"[st.k_axis], st.k_flip ? " (looking along -k)" : "", st.slab, st.k_a,
@@ -110,15 +107,16 @@ int sim_cmd_ray(int argc, char **argv)
         for (int order = 0; order < 3; order++)
             printf("order %d    %-12.4f %.4f\n", order, st.xi[order][0], st.xi[order][1]);
         int plot = run_gnuplot(o.out);
-        printf("wrote %s/ray.csv, %s/xi.csv, %s/ray.gp%s%s%s\n", o.out, o.out, o.out, plot == 0 ? ", " : "",
-               plot == 0 ? o.out : "", plot == 0 ? "/ray.png" : "");
-        if (plot == 127)
+        printf("wrote %s/ray.csv, %s/xi.csv, %s/ray.gp%s%s%s\n", o.out, o.out, o.out,
+               plot == EXIT_SUCCESS ? ", " : "", plot == EXIT_SUCCESS ? o.out : "",
+               plot == EXIT_SUCCESS ? "/ray.png" : "");
+        if (plot == NOT_INSTALLED)
             fprintf(stderr, "volfix-sim: gnuplot is not installed: no ray.png (apt-get install gnuplot-nox)\n");
-        else if (plot != 0)
+        else if (plot != EXIT_SUCCESS)
             fprintf(stderr, "volfix-sim: gnuplot failed on %s/ray.gp: no ray.png\n", o.out);
     }
     truth_study_free(&st);
-    return status;
+    return vfp_exit_status(status);
 }
 
 /* ---- static functions ---------------------------------------------------------------------------------- */
@@ -133,33 +131,33 @@ static FILE *open_in(const char *dir, const char *name, char *path, size_t len)
     return f;
 }
 
-static int close_file(FILE *f, const char *path)
+static vfp_status_t close_file(FILE *f, const char *path)
 {
     if (fclose(f) == 0)
-        return 0;
+        return VFP_OK;
     fprintf(stderr, "volfix-sim: %s: cannot write\n", path);
-    return 2;
+    return VFP_ERR;
 }
 
-static int write_files(const char *dir, const truth_study_t *st, const char *about)
+static vfp_status_t write_files(const char *dir, const truth_study_t *st, const char *about)
 {
     char path[4096];
     FILE *f = open_in(dir, "ray.csv", path, sizeof path);
     if (!f)
-        return 2;
+        return VFP_ERR;
     fprintf(f, "t,signal,order0_1,order1_1,order2_1,order0_2,order1_2,order2_2\n");
     for (int r = 0; r < st->rows; r++) {
         const double *v = st->table + 8 * r;
         fprintf(f, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]);
     }
     if (close_file(f, path) || !(f = open_in(dir, "xi.csv", path, sizeof path)))
-        return 2;
+        return VFP_ERR;
     fprintf(f, "order,spacing,xi\n");
     for (int order = 0; order < 3; order++)
         for (int h = 1; h <= 2; h++)
             fprintf(f, "%d,%d,%.6f\n", order, h, st->xi[order][h - 1]);
     if (close_file(f, path) || !(f = open_in(dir, "ray.gp", path, sizeof path)))
-        return 2;
+        return VFP_ERR;
     char quoted[700];
     size_t n = 0;
     for (const char *c = about; *c && n + 1 < sizeof quoted; c++)
@@ -170,21 +168,22 @@ static int write_files(const char *dir, const truth_study_t *st, const char *abo
     return close_file(f, path);
 }
 
-/* gnuplot ray.gp in dir; its messages go to our stderr. Returns its exit status, 127 when it is not installed. */
+/* gnuplot ray.gp in dir; its messages go to our stderr. Returns its exit status: EXIT_SUCCESS, NOT_INSTALLED, or
+ * another failure (EXIT_FAILURE when it could not be run or did not exit). */
 static int run_gnuplot(const char *dir)
 {
     fflush(stdout);
     pid_t pid = fork();
     if (pid < 0)
-        return 1;
+        return EXIT_FAILURE;
     if (pid == 0) {
         if (chdir(dir) != 0)
-            _exit(1);
+            _exit(EXIT_FAILURE);
         execlp("gnuplot", "gnuplot", "ray.gp", (char *)NULL);
-        _exit(127);
+        _exit(NOT_INSTALLED);
     }
     int wstatus;
     if (waitpid(pid, &wstatus, 0) != pid || !WIFEXITED(wstatus))
-        return 1;
+        return EXIT_FAILURE;
     return WEXITSTATUS(wstatus);
 }

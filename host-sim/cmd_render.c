@@ -18,22 +18,18 @@ static const char usage_head[] =
 
 int sim_cmd_render(int argc, char **argv)
 {
-    char usage[4096], err[VFP_ERR_LEN], about[512];
-    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     sim_opts_t o;
-    int status = sim_parse(&o, argc, argv, SIM_OPT_SCENE | SIM_OPT_OUT | SIM_OPT_REF | SIM_OPT_TRUTH | SIM_OPT_HASH,
-                           usage);
+    sim_scene_t scene;
+    vfp_status_t status =
+        sim_scene_command(&o, &scene, argc, argv, SIM_OPT_OUT | SIM_OPT_REF | SIM_OPT_TRUTH | SIM_OPT_HASH, usage_head);
     if (status)
-        return status == 1 ? 0 : 2;
+        return vfp_exit_status(status);
     if (!o.out && !o.hash) {
         fprintf(stderr, "volfix-sim render: no output file (-o OUT.png, or --hash)\n");
-        return 2;
+        sim_scene_free(&scene);
+        return VFP_EXIT_ERR;
     }
-    sim_scene_t scene;
-    if (sim_scene_load(&scene, &o, err, sizeof err)) {
-        fprintf(stderr, "volfix-sim: %s\n", err);
-        return 2;
-    }
+    char err[VFP_ERR_LEN], about[512];
     if (o.truth)
         scene.params.rays = 1; /* the truth has no intermediate image: --rays does not apply */
     vf_image_t img;
@@ -41,7 +37,7 @@ int sim_cmd_render(int argc, char **argv)
              : o.truth   ? sim_render_truth(&scene, &img, err, sizeof err)
                          : sim_render_core(&scene, &img, NULL, err, sizeof err);
     uint64_t hash = 0;
-    if (status == 0) {
+    if (status == VFP_OK) {
         hash = vfp_image_hash(&img);
         if (o.out)
             status = vfp_png_write(o.out, &img, err, sizeof err);
@@ -58,5 +54,5 @@ int sim_cmd_render(int argc, char **argv)
             printf("%s: %s%s\n", o.out, about, which);
     }
     sim_scene_free(&scene);
-    return status ? 2 : 0;
+    return vfp_exit_status(status);
 }

@@ -176,12 +176,12 @@ static void sweep_two_orders(sweep_ctx_t *c, int scene)
 }
 
 /* The sharp preset's three peaks with another half-width, written into the study's directory. */
-static int write_peaks(const char *dir, double half, char *path, size_t len)
+static vfp_status_t write_peaks(const char *dir, double half, char *path, size_t len)
 {
     snprintf(path, len, "%s/peaks-%.3f.tf", dir, half);
     FILE *f = fopen(path, "w");
     if (!f)
-        return 2;
+        return VFP_ERR;
     const double centre[3] = {0.30, 0.55, 0.80}, colour[3][4] = {{1, 0.5, 0.1, 0.9}, {0.2, 1, 0.3, 0.9}, {1, 1, 1, 1}};
     fprintf(f, "# the sharp preset's peaks, half-width %.3f of the window\n0 0 0 0 0\n", half);
     for (int k = 0; k < 3; k++) {
@@ -190,7 +190,7 @@ static int write_peaks(const char *dir, double half, char *path, size_t len)
                 centre[k], c[0], c[1], c[2], c[3], centre[k] + half, c[0], c[1], c[2]);
     }
     fclose(f);
-    return 0;
+    return VFP_OK;
 }
 
 static int exists(const char *path)
@@ -204,7 +204,7 @@ int sim_cmd_study(int argc, char **argv)
     study_t *st = calloc(1, sizeof *st);
     if (!st) {
         fprintf(stderr, "volfix-sim: out of memory\n");
-        return 2;
+        return VFP_EXIT_ERR;
     }
     st->threads = 2;
     st->have_valgrind = -1;
@@ -212,7 +212,7 @@ int sim_cmd_study(int argc, char **argv)
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             fputs(usage, stdout);
             free(st);
-            return 0;
+            return VFP_EXIT_OK;
         } else if (strcmp(argv[i], "--quick") == 0) {
             st->quick = 1;
         } else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
@@ -222,23 +222,23 @@ int sim_cmd_study(int argc, char **argv)
             if (st->threads < 1 || st->threads > 16) {
                 fprintf(stderr, "volfix-sim study: --threads %s: expected 1..16\n", argv[i]);
                 free(st);
-                return 2;
+                return VFP_EXIT_ERR;
             }
         } else {
             fprintf(stderr, "volfix-sim study: %s: unknown option or missing value (see --help)\n", argv[i]);
             free(st);
-            return 2;
+            return VFP_EXIT_ERR;
         }
     }
     if (!st->dir) {
         fprintf(stderr, "volfix-sim study: no output directory (-o DIR)\n");
         free(st);
-        return 2;
+        return VFP_EXIT_ERR;
     }
     if (mkdir(st->dir, 0755) != 0 && !exists(st->dir)) {
         fprintf(stderr, "volfix-sim study: %s: cannot create the directory\n", st->dir);
         free(st);
-        return 2;
+        return VFP_EXIT_ERR;
     }
     st->started_ms = vfp_now_ms();
     st->progress_tty = isatty(2);
@@ -319,10 +319,14 @@ int sim_cmd_study(int argc, char **argv)
         int quick;
         unsigned most_rays; /* the full study's rays sweep on the scene: R = 1 up to this (0: none) */
     } shared[] = {
-        {"neghip.nhdr", "neghip-sharp", "sharp", 30, 20, 1, 4},    {"neghip.nhdr", "neghip-mr-brain", "mr-brain", 30, 20, 0, 0},
-        {"brainsmall.nhdr", "brain-mr-brain", "mr-brain", 0, -90, 0, 0}, {"engine.nhdr", "engine-ct-bone", "ct-bone", 30, 20, 0, 2},
-        {"engine.nhdr", "engine-ramp", "ramp", 30, 20, 0, 0},      {"cthead.nhdr", "cthead-ct-skin-bone", "ct-skin-bone", 180, 90, 0, 0},
-        {"headsq.nhdr", "headsq-ct-bone", "ct-bone", 30, 20, 0, 0}, {"bucky.nhdr", "bucky-sharp", "sharp", 30, 20, 0, 4},
+        {"neghip.nhdr", "neghip-sharp", "sharp", 30, 20, 1, 4},
+        {"neghip.nhdr", "neghip-mr-brain", "mr-brain", 30, 20, 0, 0},
+        {"brainsmall.nhdr", "brain-mr-brain", "mr-brain", 0, -90, 0, 0},
+        {"engine.nhdr", "engine-ct-bone", "ct-bone", 30, 20, 0, 2},
+        {"engine.nhdr", "engine-ramp", "ramp", 30, 20, 0, 0},
+        {"cthead.nhdr", "cthead-ct-skin-bone", "ct-skin-bone", 180, 90, 0, 0},
+        {"headsq.nhdr", "headsq-ct-bone", "ct-bone", 30, 20, 0, 0},
+        {"bucky.nhdr", "bucky-sharp", "sharp", 30, 20, 0, 4},
     };
     for (size_t i = 0; i < sizeof shared / sizeof shared[0] && !c.failed; i++) {
         if (st->quick && !shared[i].quick)
@@ -389,18 +393,18 @@ int sim_cmd_study(int argc, char **argv)
 
     if (st->progress_tty)
         fprintf(stderr, "\n");
-    int status = 0;
+    vfp_status_t status = VFP_OK;
     if (c.failed) {
         fprintf(stderr, "volfix-sim study: %s\n", c.err);
-        status = 2;
+        status = VFP_ERR;
     } else if (study_write_report(st, c.err, sizeof c.err)) {
         fprintf(stderr, "volfix-sim study: %s\n", c.err);
-        status = 2;
+        status = VFP_ERR;
     } else {
         printf("study: %d runs on %d scenes in %.0f s; report in %s/report.md\n", st->run_count, st->scene_count,
                (vfp_now_ms() - st->started_ms) / 1000, st->dir);
     }
     study_free(st);
     free(st);
-    return status;
+    return vfp_exit_status(status);
 }

@@ -81,12 +81,12 @@ static double build_ms(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_buil
 }
 
 /* front across, back down; colour left, opacity right */
-static int draw(const char *path, const uint16_t *t, uint32_t n, char *err, size_t errlen)
+static vfp_status_t draw(const char *path, const uint16_t *t, uint32_t n, char *err, size_t errlen)
 {
     uint8_t *rgb = calloc((size_t)n * 2 * n, 3);
     if (!rgb) {
         snprintf(err, errlen, "out of memory");
-        return 2;
+        return VFP_ERR;
     }
     for (uint32_t back = 0; back < n; back++)
         for (uint32_t front = 0; front < n; front++) {
@@ -97,7 +97,7 @@ static int draw(const char *path, const uint16_t *t, uint32_t n, char *err, size
                 right[c] = (uint8_t)((e[3] * 255u + 16384u) >> 15);
             }
         }
-    int status = vfp_png_write_rgb(path, rgb, 2 * n, n, err, errlen);
+    vfp_status_t status = vfp_png_write_rgb(path, rgb, 2 * n, n, err, errlen);
     free(rgb);
     return status;
 }
@@ -114,13 +114,13 @@ int sim_cmd_tables(int argc, char **argv)
         char *end = NULL;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
-            return 0;
+            return VFP_EXIT_OK;
         } else if (strcmp(a, "--json") == 0) {
             json = 1;
             continue;
         } else if (!v) {
             fprintf(stderr, "volfix-sim tables: %s: unknown option or missing value (see --help)\n", a);
-            return 2;
+            return VFP_EXIT_ERR;
         } else if (strcmp(a, "--preset") == 0) {
             preset = v;
         } else if (strcmp(a, "--tf") == 0) {
@@ -131,40 +131,41 @@ int sim_cmd_tables(int argc, char **argv)
             n = strtol(v, &end, 10);
             if (*end || n < VF_MIN_TABLE || n > VF_MAX_TABLE) {
                 fprintf(stderr, "volfix-sim tables: --size %s: expected an integer from 2 to 1024\n", v);
-                return 2;
+                return VFP_EXIT_ERR;
             }
         } else if (strcmp(a, "--bits") == 0) {
             bits = strtol(v, &end, 10);
             if (*end || (bits != 8 && bits != 16)) {
                 fprintf(stderr, "volfix-sim tables: --bits %s: expected 8 or 16\n", v);
-                return 2;
+                return VFP_EXIT_ERR;
             }
         } else if (strcmp(a, "--repeat") == 0) {
             repeat = strtol(v, &end, 10);
             if (*end || repeat < 1 || repeat > 1000) {
                 fprintf(stderr, "volfix-sim tables: --repeat %s: expected 1..1000\n", v);
-                return 2;
+                return VFP_EXIT_ERR;
             }
         } else if (strcmp(a, "--slab") == 0) {
             slab = strtod(v, &end);
             if (*end || !(slab >= 1.0 / 64 && slab <= 128)) {
                 fprintf(stderr, "volfix-sim tables: --slab %s: expected a length in voxels, 1/64..128\n", v);
-                return 2;
+                return VFP_EXIT_ERR;
             }
         } else {
             fprintf(stderr, "volfix-sim tables: %s: unknown option (see --help)\n", a);
-            return 2;
+            return VFP_EXIT_ERR;
         }
         i++;
     }
     if (preset && tf_file) {
         fprintf(stderr, "volfix-sim tables: give --preset or --tf, not both\n");
-        return 2;
+        return VFP_EXIT_ERR;
     }
     vfp_tf_t tf;
-    if (tf_file ? vfp_tf_load(&tf, tf_file, err, sizeof err) : vfp_tf_preset(&tf, preset ? preset : "ramp", err, sizeof err)) {
+    if (tf_file ? vfp_tf_load(&tf, tf_file, err, sizeof err)
+                : vfp_tf_preset(&tf, preset ? preset : "ramp", err, sizeof err)) {
         fprintf(stderr, "volfix-sim: %s\n", err);
-        return 2;
+        return VFP_EXIT_ERR;
     }
     vf_tf_point_t points[VF_MAX_TF_POINTS];
     vf_window_t whole = {0, 255};
@@ -178,7 +179,7 @@ int sim_cmd_tables(int argc, char **argv)
     uint16_t *fast = malloc(entries * 8), *slow = malloc(entries * 8);
     double *ref = malloc(entries * 4 * sizeof(double));
     ref_tf_point_t ref_tf[VF_MAX_TF_POINTS];
-    int status = 2;
+    vfp_status_t status = VFP_ERR;
     if (!scratch || !fast || !slow || !ref) {
         fprintf(stderr, "volfix-sim: out of memory for %ldx%ld tables\n", n, n);
         goto done;
@@ -219,11 +220,11 @@ int sim_cmd_tables(int argc, char **argv)
         printf("  incremental is %.1fx faster; the two differ by at most %.0f LSB of Q1.15\n", slow_ms / fast_ms,
                eb.max);
     }
-    status = 0;
+    status = VFP_OK;
     if (out) {
         if (draw(out, fast, (uint32_t)n, err, sizeof err)) {
             fprintf(stderr, "volfix-sim: %s\n", err);
-            status = 2;
+            status = VFP_ERR;
         } else if (!json) {
             printf("  drawn to %s: front entry across, back entry down; colour left, opacity right\n", out);
         }
@@ -233,5 +234,5 @@ done:
     free(fast);
     free(slow);
     free(ref);
-    return status;
+    return vfp_exit_status(status);
 }

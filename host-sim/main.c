@@ -17,27 +17,26 @@ static const char usage[] =
     "  study     the fixed-point precision study: errors, plots, report.md\n"
     "  diff      two PNG images compared pixel by pixel\n";
 
+/* The commands in the order the usage lists them. */
+static const struct {
+    const char *name;
+    int (*run)(int argc, char **argv);
+} commands[] = {
+    {"render", sim_cmd_render}, {"compare", sim_cmd_compare}, {"bench", sim_cmd_bench}, {"tables", sim_cmd_tables},
+    {"ray", sim_cmd_ray},       {"study", sim_cmd_study},     {"diff", sim_cmd_diff},
+};
+
 int main(int argc, char **argv)
 {
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
         fputs(usage, argc < 2 ? stderr : stdout);
-        return argc < 2 ? 2 : 0;
+        return argc < 2 ? VFP_EXIT_ERR : VFP_EXIT_OK;
     }
     const char *cmd = argv[1];
-    if (strcmp(cmd, "render") == 0)
-        return sim_cmd_render(argc - 2, argv + 2);
-    if (strcmp(cmd, "compare") == 0)
-        return sim_cmd_compare(argc - 2, argv + 2);
-    if (strcmp(cmd, "bench") == 0)
-        return sim_cmd_bench(argc - 2, argv + 2);
-    if (strcmp(cmd, "tables") == 0)
-        return sim_cmd_tables(argc - 2, argv + 2);
-    if (strcmp(cmd, "ray") == 0)
-        return sim_cmd_ray(argc - 2, argv + 2);
-    if (strcmp(cmd, "study") == 0)
-        return sim_cmd_study(argc - 2, argv + 2);
-    if (strcmp(cmd, "diff") == 0)
-        return sim_cmd_diff(argc - 2, argv + 2);
-    fprintf(stderr, "volfix-sim: unknown command '%s' (expected render, compare, bench, tables, ray, study or diff; see --help)\n", cmd);
-    return 2;
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (strcmp(cmd, commands[i].name) == 0)
+            return commands[i].run(argc - 2, argv + 2);
+    fprintf(stderr, "volfix-sim: unknown command '%s' (expected render, compare, bench, tables, ray, study or diff; "
+                    "see --help)\n", cmd);
+    return VFP_EXIT_ERR;
 }

@@ -37,10 +37,10 @@ const char sim_scene_help[] =
     "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N with NAME marschner-lobb,\n"
     "shepp-logan, sphere or cube.\n";
 
-static int bad(const char *option, const char *value, const char *expected)
+static vfp_status_t bad(const char *option, const char *value, const char *expected)
 {
     fprintf(stderr, "volfix-sim: %s %s: expected %s\n", option, value ? value : "(missing)", expected);
-    return 2;
+    return VFP_ERR;
 }
 
 static int parse_doubles(const char *text, double *out, int min, int max)
@@ -62,17 +62,17 @@ static int parse_doubles(const char *text, double *out, int min, int max)
     return n >= min && *p ? n : -1;
 }
 
-int sim_parse_mode(const char *text, vf_mode_t *mode)
+vfp_status_t sim_parse_mode(const char *text, vf_mode_t *mode)
 {
     for (int m = 0; m < VF_MODE_COUNT; m++)
         if (text && strcmp(text, vf_mode_name((vf_mode_t)m)) == 0) {
             *mode = (vf_mode_t)m;
-            return 0;
+            return VFP_OK;
         }
-    return 2;
+    return VFP_ERR;
 }
 
-int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char *usage)
+vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char *usage)
 {
     memset(o, 0, sizeof *o);
     vf_params_default(&o->params);
@@ -90,7 +90,7 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
         int takes = 1; /* how many arguments this option consumed after itself */
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
-            return 1;
+            return VFP_HELP_SHOWN;
         } else if (a[0] != '-' && !o->volume && (groups & SIM_OPT_SCENE)) {
             o->volume = a;
             takes = 0;
@@ -190,13 +190,13 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--dims") == 0 && v) {
             if (vfp_parse_dims(v, o->load.dims, err, sizeof err)) {
                 fprintf(stderr, "volfix-sim: --dims: %s\n", err);
-                return 2;
+                return VFP_ERR;
             }
             o->load.have_dims = 1;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--type") == 0 && v) {
             if (vfp_parse_type(v, &o->load.type, err, sizeof err)) {
                 fprintf(stderr, "volfix-sim: --type: %s\n", err);
-                return 2;
+                return VFP_ERR;
             }
             o->load.have_type = 1;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--big-endian") == 0) {
@@ -255,29 +255,29 @@ int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char 
             o->rounds = (int)n;
         } else if (a[0] == '-' && v == NULL) {
             fprintf(stderr, "volfix-sim: %s: unknown option or missing value (see --help)\n", a);
-            return 2;
+            return VFP_ERR;
         } else {
             fprintf(stderr, "volfix-sim: %s: unknown option or argument (see --help)\n", a);
-            return 2;
+            return VFP_ERR;
         }
         i += takes;
     }
     if ((groups & SIM_OPT_SCENE) && !o->volume) {
         fprintf(stderr, "volfix-sim: no volume given (see --help)\n");
-        return 2;
+        return VFP_ERR;
     }
     if (o->reference && o->truth) {
         fprintf(stderr, "volfix-sim: give --reference or --truth, not both\n");
-        return 2;
+        return VFP_ERR;
     }
     if (o->params.partial_slabs && o->params.correction == VF_CORRECTION_LUT && !o->reference) {
         fprintf(stderr, "volfix-sim: --partial-slabs goes with --correction rebuild: the core does not shorten "
                         "lut-corrected slabs (docs/algorithm.md, section 4c)\n");
-        return 2;
+        return VFP_ERR;
     }
     if (o->preset && o->tf_file) {
         fprintf(stderr, "volfix-sim: give --preset or --tf, not both\n");
-        return 2;
+        return VFP_ERR;
     }
-    return 0;
+    return VFP_OK;
 }

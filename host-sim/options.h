@@ -47,12 +47,12 @@ enum {
     SIM_OPT_ROUNDS = 2048, /* --rounds */
 };
 
-/* Parse argv (after the command name). Returns 0, 1 when --help was asked (usage printed), or 2 after printing
- * a one-line error to stderr. */
-int sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char *usage);
+/* Parse argv (after the command name). Returns VFP_OK, VFP_HELP_SHOWN when --help was asked (usage printed), or
+ * VFP_ERR after printing a one-line error to stderr. */
+vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char *usage);
 
-/* "point", "preint1" or "preclass". Returns 0, or 2. */
-int sim_parse_mode(const char *text, vf_mode_t *mode);
+/* "point", "preint1" or "preclass". Returns VFP_OK, or VFP_ERR for another text. */
+vfp_status_t sim_parse_mode(const char *text, vf_mode_t *mode);
 
 /* The scene options' help text, for the commands' usage. */
 extern const char sim_scene_help[];

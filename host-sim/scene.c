@@ -19,21 +19,32 @@ vf_view_t sim_view(double azimuth, double elevation, double roll, double zoom)
     return v;
 }
 
-int sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen)
+vfp_status_t sim_scene_command(sim_opts_t *opts, sim_scene_t *scene, int argc, char **argv, unsigned groups,
+                               const char *usage_head)
+{
+    char usage[4096], err[VFP_ERR_LEN];
+    snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
+    vfp_status_t status = sim_parse(opts, argc, argv, SIM_OPT_SCENE | groups, usage);
+    if (status == VFP_OK && (status = sim_scene_load(scene, opts, err, sizeof err)) != VFP_OK)
+        fprintf(stderr, "volfix-sim: %s\n", err);
+    return status;
+}
+
+vfp_status_t sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen)
 {
     memset(s, 0, sizeof *s);
     if (vfp_volume_load(&s->vol, o->volume, &o->load, err, errlen))
-        return 2;
+        return VFP_ERR;
     s->window = vfp_default_window(&s->vol);
     if (o->window && vfp_parse_window(&s->vol, o->window, &s->window, err, errlen)) {
         vfp_volume_free(&s->vol);
-        return 2;
+        return VFP_ERR;
     }
-    int status = o->tf_file ? vfp_tf_load(&s->tf, o->tf_file, err, errlen)
-                            : vfp_tf_preset(&s->tf, o->preset ? o->preset : "ramp", err, errlen);
+    vfp_status_t status = o->tf_file ? vfp_tf_load(&s->tf, o->tf_file, err, errlen)
+                                     : vfp_tf_preset(&s->tf, o->preset ? o->preset : "ramp", err, errlen);
     if (status) {
         vfp_volume_free(&s->vol);
-        return 2;
+        return VFP_ERR;
     }
     if (o->tf_shift != 0 || o->tf_scale != 1)
         vfp_tf_move(&s->tf, &s->vol, s->window, o->tf_shift, o->tf_scale);
@@ -44,7 +55,7 @@ int sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen
     s->height = o->height;
     s->format = o->format;
     s->threads = o->threads;
-    return 0;
+    return VFP_OK;
 }
 
 void sim_scene_free(sim_scene_t *s)
@@ -53,7 +64,7 @@ void sim_scene_free(sim_scene_t *s)
     memset(s, 0, sizeof *s);
 }
 
-int sim_image_alloc(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
+vfp_status_t sim_image_alloc(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
 {
     return vfp_image_alloc(img, width, height, format);
 }
@@ -63,21 +74,21 @@ void sim_image_free(vf_image_t *img)
     vfp_image_free(img);
 }
 
-int sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, char *err, size_t errlen)
+vfp_status_t sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, char *err, size_t errlen)
 {
     vfp_render_t r;
     if (sim_image_alloc(img, s->width, s->height, s->format)) {
         snprintf(err, errlen, "out of memory for a %ux%u image", s->width, s->height);
-        return 2;
+        return VFP_ERR;
     }
-    int status = vfp_render_open(&r, &s->params, &s->vol.core, s->threads, err, errlen);
-    if (status == 0)
+    vfp_status_t status = vfp_render_open(&r, &s->params, &s->vol.core, s->threads, err, errlen);
+    if (status == VFP_OK)
         status = vfp_render_set_window(&r, s->window, err, errlen);
-    if (status == 0)
+    if (status == VFP_OK)
         status = vfp_render_set_tf(&r, s->points, s->npoints, err, errlen);
-    if (status == 0)
+    if (status == VFP_OK)
         status = vfp_render_frame(&r, &s->view, img, err, errlen);
-    if (status == 0 && factor)
+    if (status == VFP_OK && factor)
         *factor = *vf_renderer_factor(r.core);
     vfp_render_close(&r);
     if (status)
@@ -87,13 +98,13 @@ int sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, 
 
 /* The reference and the truth get the same inputs the core gets: the spacing, view and transfer function as
  * quantised for the core, and they window the raw voxels themselves. */
-int sim_ref_inputs(const sim_scene_t *s, sim_ref_inputs_t *in)
+vfp_status_t sim_ref_inputs(const sim_scene_t *s, sim_ref_inputs_t *in)
 {
     const vf_volume_t *cv = &s->vol.core;
     int dims[3] = {(int)cv->dims[0], (int)cv->dims[1], (int)cv->dims[2]};
     in->scalars = malloc((size_t)dims[0] * dims[1] * dims[2]);
     if (!in->scalars)
-        return 2;
+        return VFP_ERR;
     ref_window(cv->voxels, (int)cv->type, dims, s->window.lo, s->window.hi, in->scalars);
     in->vol = (ref_volume_t){{dims[0], dims[1], dims[2]},
                              {cv->spacing_q16[0] / 65536.0, cv->spacing_q16[1] / 65536.0, cv->spacing_q16[2] / 65536.0},
@@ -105,7 +116,7 @@ int sim_ref_inputs(const sim_scene_t *s, sim_ref_inputs_t *in)
     in->view = (ref_view_t){s->view.azimuth, s->view.elevation, s->view.roll, s->view.zoom_q16 / 65536.0};
     for (int c = 0; c < 3; c++)
         in->background[c] = s->params.background[c] / 65535.0;
-    return 0;
+    return VFP_OK;
 }
 
 void sim_ref_inputs_free(sim_ref_inputs_t *in)
@@ -137,18 +148,43 @@ static void rgb_to_image(const sim_scene_t *s, const double *rgb, vf_image_t *im
         }
 }
 
-int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, vf_image_t *img, char *err,
-                         size_t errlen)
+/* What the reference and the truth render from and into: their inputs, a frame of doubles, and the image it
+ * becomes. VFP_ERR with "out of memory for WHO" in err, with nothing left to free. */
+static vfp_status_t double_frame_begin(const sim_scene_t *s, const char *who, sim_ref_inputs_t *in, double **rgb,
+                                       vf_image_t *img, char *err, size_t errlen)
+{
+    in->scalars = NULL;
+    *rgb = malloc(sizeof(double) * 3 * s->width * s->height);
+    if (!*rgb || sim_ref_inputs(s, in) || sim_image_alloc(img, s->width, s->height, s->format)) {
+        free(*rgb);
+        sim_ref_inputs_free(in);
+        snprintf(err, errlen, "out of memory for %s", who);
+        return VFP_ERR;
+    }
+    return VFP_OK;
+}
+
+/* The frame becomes the image when the renderer succeeded (0), else the image is freed; the inputs and the frame
+ * are freed either way. */
+static vfp_status_t double_frame_end(const sim_scene_t *s, int rendered, sim_ref_inputs_t *in, double *rgb,
+                                     vf_image_t *img)
+{
+    if (rendered == 0)
+        rgb_to_image(s, rgb, img);
+    else
+        sim_image_free(img);
+    sim_ref_inputs_free(in);
+    free(rgb);
+    return rendered == 0 ? VFP_OK : VFP_ERR;
+}
+
+vfp_status_t sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, vf_image_t *img, char *err,
+                                  size_t errlen)
 {
     sim_ref_inputs_t in;
-    in.scalars = NULL;
-    double *rgb = malloc(sizeof(double) * 3 * s->width * s->height);
-    if (!rgb || sim_ref_inputs(s, &in) || sim_image_alloc(img, s->width, s->height, s->format)) {
-        free(rgb);
-        sim_ref_inputs_free(&in);
-        snprintf(err, errlen, "out of memory for the reference");
-        return 2;
-    }
+    double *rgb;
+    if (double_frame_begin(s, "the reference", &in, &rgb, img, err, errlen))
+        return VFP_ERR;
     ref_params_t params = {0};
     params.mode = s->params.mode == VF_MODE_POINT ? REF_MODE_POINT
                   : s->params.mode == VF_MODE_PRECLASS ? REF_MODE_PRECLASS
@@ -175,42 +211,25 @@ int sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, v
     int status = ref_render(&in.vol, in.tf, in.npoints, &params, &in.view, (int)s->width, (int)s->height, rgb,
                             NULL);
     free(offsets);
-    if (status == 0) {
-        rgb_to_image(s, rgb, img);
-    } else {
+    if (status)
         snprintf(err, errlen, status == -2 ? "the core's factorisation disagrees with the reference's (principal axis, "
                                              "flip or a slice offset more than 2^-16 apart)"
                                            : "the reference renderer failed (status %d)",
                  status);
-        sim_image_free(img);
-    }
-    sim_ref_inputs_free(&in);
-    free(rgb);
-    return status ? 2 : 0;
+    return double_frame_end(s, status, &in, rgb, img);
 }
 
-int sim_render_truth(const sim_scene_t *s, vf_image_t *img, char *err, size_t errlen)
+vfp_status_t sim_render_truth(const sim_scene_t *s, vf_image_t *img, char *err, size_t errlen)
 {
     sim_ref_inputs_t in;
-    in.scalars = NULL;
-    double *rgb = malloc(sizeof(double) * 3 * s->width * s->height);
-    if (!rgb || sim_ref_inputs(s, &in) || sim_image_alloc(img, s->width, s->height, s->format)) {
-        free(rgb);
-        sim_ref_inputs_free(&in);
-        snprintf(err, errlen, "out of memory for the ground truth");
-        return 2;
-    }
+    double *rgb;
+    if (double_frame_begin(s, "the ground truth", &in, &rgb, img, err, errlen))
+        return VFP_ERR;
     int status = truth_render(&in.vol, in.tf, in.npoints, in.background, &in.view, (int)s->width,
                               (int)s->height, s->threads, rgb);
-    if (status == 0) {
-        rgb_to_image(s, rgb, img);
-    } else {
+    if (status)
         snprintf(err, errlen, "the ground-truth ray caster failed (status %d)", status);
-        sim_image_free(img);
-    }
-    sim_ref_inputs_free(&in);
-    free(rgb);
-    return status ? 2 : 0;
+    return double_frame_end(s, status, &in, rgb, img);
 }
 
 void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)

@@ -25,8 +25,14 @@ typedef struct sim_scene {
     int threads;
 } sim_scene_t;
 
-/* Load the volume and transfer function the options name. Returns 0, or 2 with err. */
-int sim_scene_load(sim_scene_t *scene, const sim_opts_t *opts, char *err, size_t errlen);
+/* The start of a command that renders a scene: its options parsed (the usage is usage_head, then the scene options'
+ * help) and the scene loaded. Returns VFP_OK with the scene loaded (free it), VFP_HELP_SHOWN after printing the
+ * usage, or VFP_ERR after printing a one-line error. */
+vfp_status_t sim_scene_command(sim_opts_t *opts, sim_scene_t *scene, int argc, char **argv, unsigned groups,
+                               const char *usage_head);
+
+/* Load the volume and transfer function the options name. Returns VFP_OK, or VFP_ERR with err. */
+vfp_status_t sim_scene_load(sim_scene_t *scene, const sim_opts_t *opts, char *err, size_t errlen);
 void sim_scene_free(sim_scene_t *scene);
 
 /* Degrees to binary angle units, and a view from the options' angles and zoom. */
@@ -34,22 +40,23 @@ int32_t sim_bau(double degrees);
 vf_view_t sim_view(double azimuth, double elevation, double roll, double zoom);
 
 /* An image of the scene's size and format (pixels malloc'd; free with sim_image_free). */
-int sim_image_alloc(vf_image_t *image, uint32_t width, uint32_t height, vf_format_t format);
+vfp_status_t sim_image_alloc(vf_image_t *image, uint32_t width, uint32_t height, vf_format_t format);
 void sim_image_free(vf_image_t *image);
 
 /* Render with the core (threads from the scene) into an image of the scene's size and format; factor, if not
- * NULL, receives the frame's factorisation. Returns 0, or 2 with err. */
-int sim_render_core(const sim_scene_t *scene, vf_image_t *image, vf_factor_t *factor, char *err, size_t errlen);
+ * NULL, receives the frame's factorisation. Returns VFP_OK, or VFP_ERR with err. */
+vfp_status_t sim_render_core(const sim_scene_t *scene, vf_image_t *image, vf_factor_t *factor, char *err,
+                             size_t errlen);
 
 /* Render with the double reference. With core_factor (from sim_render_core), the reference checks the core's
  * slice offsets against its own and samples where the core does (ref.h explains why); without it the
- * reference works alone. Returns 0, or 2 with err (also when the factorisations disagree). */
-int sim_render_reference(const sim_scene_t *scene, const vf_factor_t *core_factor, vf_image_t *image, char *err,
-                         size_t errlen);
+ * reference works alone. Returns VFP_OK, or VFP_ERR with err (also when the factorisations disagree). */
+vfp_status_t sim_render_reference(const sim_scene_t *scene, const vf_factor_t *core_factor, vf_image_t *image,
+                                  char *err, size_t errlen);
 
 /* The scene as the reference and the truth take it: the windowed 8-bit volume, the transfer-function points,
- * view and background as quantised for the core. Returns 0, or 2 when out of memory; free the scalars with
- * sim_ref_inputs_free. */
+ * view and background as quantised for the core. sim_ref_inputs returns VFP_OK, or VFP_ERR when out of memory;
+ * free the scalars with sim_ref_inputs_free. */
 typedef struct sim_ref_inputs {
     ref_volume_t vol;
     uint8_t *scalars;
@@ -59,13 +66,13 @@ typedef struct sim_ref_inputs {
     double background[3];
 } sim_ref_inputs_t;
 
-int sim_ref_inputs(const sim_scene_t *scene, sim_ref_inputs_t *in);
+vfp_status_t sim_ref_inputs(const sim_scene_t *scene, sim_ref_inputs_t *in);
 void sim_ref_inputs_free(sim_ref_inputs_t *in);
 
 /* Render with the ground-truth ray caster (host-sim/truth) from the inputs the reference gets: the windowed
  * volume, the quantised transfer-function points, view, size and background; threads from the scene. The mode
- * and table options do not apply. Returns 0, or 2 with err. */
-int sim_render_truth(const sim_scene_t *scene, vf_image_t *image, char *err, size_t errlen);
+ * and table options do not apply. Returns VFP_OK, or VFP_ERR with err. */
+vfp_status_t sim_render_truth(const sim_scene_t *scene, vf_image_t *image, char *err, size_t errlen);
 
 /* "engine.nhdr preint1 512x512 view 30,20 ramp window 0,255": what a line of output is about. */
 void sim_scene_describe(const sim_scene_t *scene, char *text, size_t len);

@@ -8,13 +8,13 @@
 
 #include "io/pngio.h"
 
-static int to_rgb(const vf_image_t *img, uint8_t **rgb)
+static vfp_status_t to_rgb(const vf_image_t *img, uint8_t **rgb)
 {
     *rgb = malloc((size_t)img->width * img->height * 3);
     if (!*rgb)
-        return 2;
+        return VFP_ERR;
     vfp_image_to_rgb(img, *rgb);
-    return 0;
+    return VFP_OK;
 }
 
 vf_params_t study_default_params(void)
@@ -90,7 +90,7 @@ const uint8_t *study_truth(study_t *st, int scene, char *err, size_t errlen)
     if (sim_render_truth(&sc->scene, &img, err, errlen))
         return NULL;
     sc->truth_ms = vfp_now_ms() - t0;
-    int status = to_rgb(&img, &sc->truth);
+    vfp_status_t status = to_rgb(&img, &sc->truth);
     sim_image_free(&img);
     if (status) {
         snprintf(err, errlen, "out of memory");
@@ -138,7 +138,7 @@ static const uint8_t *reference_for(study_t *st, int scene, const vf_params_t *p
     r->correction = p->correction;
     r->rays = p->rays;
     r->partial_slabs = p->partial_slabs;
-    int status = to_rgb(&img, &r->rgb);
+    vfp_status_t status = to_rgb(&img, &r->rgb);
     sim_image_free(&img);
     if (status) {
         snprintf(err, errlen, "out of memory");
@@ -172,8 +172,8 @@ static double median(double *x, int n)
 /* Time st->time_frames more frames, each 2 degrees further round the vertical axis than the last (a turning
  * knob: the slab length changes, so every frame rebuilds the tables), and keep in the run the median CPU time of
  * a frame and the median wall-clock time of its table rebuild. */
-static int time_frames(study_t *st, vfp_render_t *r, const vf_view_t *view, vf_image_t *img, study_run_t *run,
-                       char *err, size_t errlen)
+static vfp_status_t time_frames(study_t *st, vfp_render_t *r, const vf_view_t *view, vf_image_t *img, study_run_t *run,
+                                char *err, size_t errlen)
 {
     enum { MOST = 15 };
     double total[MOST], tables[MOST];
@@ -183,7 +183,7 @@ static int time_frames(study_t *st, vfp_render_t *r, const vf_view_t *view, vf_i
         v.azimuth += sim_bau(2.0 * (i + 1));
         double t0 = thread_cpu_ms();
         if (vfp_render_frame(r, &v, img, err, errlen))
-            return 2;
+            return VFP_ERR;
         total[i] = thread_cpu_ms() - t0;
         tables[i] = r->ms_tables;
     }
@@ -192,29 +192,29 @@ static int time_frames(study_t *st, vfp_render_t *r, const vf_view_t *view, vf_i
         run->frame_ms = median(total, n);
         run->frame_tables_ms = median(tables, n);
     }
-    return 0;
+    return VFP_OK;
 }
 
 /* Render with the core; memory, band scratch and frame times too when asked. */
-static int render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, study_run_t *run, char *err,
-                       size_t errlen)
+static vfp_status_t render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, study_run_t *run,
+                                char *err, size_t errlen)
 {
     const sim_scene_t *s = &st->scenes[scene].scene;
     vf_image_t img;
     vfp_render_t r;
     if (sim_image_alloc(&img, s->width, s->height, VF_FORMAT_RGB888)) {
         snprintf(err, errlen, "out of memory");
-        return 2;
+        return VFP_ERR;
     }
-    int status = vfp_render_open(&r, params, &s->vol.core, 1, err, errlen);
-    if (status == 0)
+    vfp_status_t status = vfp_render_open(&r, params, &s->vol.core, 1, err, errlen);
+    if (status == VFP_OK)
         status = vfp_render_set_window(&r, s->window, err, errlen);
-    if (status == 0)
+    if (status == VFP_OK)
         status = vfp_render_set_tf(&r, s->points, s->npoints, err, errlen);
     double t0 = vfp_now_ms();
-    if (status == 0)
+    if (status == VFP_OK)
         status = vfp_render_frame(&r, &s->view, &img, err, errlen);
-    if (status == 0) {
+    if (status == VFP_OK) {
         vfp_image_to_rgb(&img, rgb);
         if (run) {
             run->ms = vfp_now_ms() - t0;
@@ -228,7 +228,8 @@ static int render_core(study_t *st, int scene, const vf_params_t *params, uint8_
     return status;
 }
 
-int study_render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, char *err, size_t errlen)
+vfp_status_t study_render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, char *err,
+                               size_t errlen)
 {
     return render_core(st, scene, params, rgb, NULL, err, errlen);
 }

@@ -1,8 +1,8 @@
 /*
  * study.h: the fixed-point precision study: render scenes with many configurations of the core, measure each
  * against the double reference of the same algorithm (the fixed-point error alone) and against the ground
- * truth (the algorithm's own error), and record memory. study.c runs; study_report.c writes CSV, plots and
- * report.md; cmd_study.c decides what to run.
+ * truth (the algorithm's own error), and record memory. study.c runs; study_report.c and the writers
+ * study_report.h lists write CSV, plots, image strips, summary.json and report.md; cmd_study.c decides what to run.
  */
 #ifndef SIM_STUDY_H
 #define SIM_STUDY_H
@@ -142,20 +142,23 @@ study_run_t *study_run(study_t *st, int scene, const vf_params_t *params, const 
  * passed: count only default-precision runs. 0 when valgrind is not installed or the count failed. */
 uint64_t study_instructions(study_t *st, int scene, const vf_params_t *params);
 
-/* Render a scene's core image for a configuration into rgb (size * size * 3). Returns 0, or 2 with err. */
-int study_render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, char *err, size_t errlen);
+/* Render a scene's core image for a configuration into rgb (size * size * 3). Returns VFP_OK, or VFP_ERR with
+ * err. */
+vfp_status_t study_render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, char *err,
+                               size_t errlen);
 
 /* The scene's truth image (rendered on first use). NULL with err on failure. */
 const uint8_t *study_truth(study_t *st, int scene, char *err, size_t errlen);
 
 /* Measure a scene's floor and its integration errors (study_floor_t) into out, with R rays per voxel column and
- * N table entries (0: the scene's own). Returns 0, or 2 with err. */
-int study_floor(study_t *st, int scene, int rays, int table_size, study_floor_t *out, char *err, size_t errlen);
+ * N table entries (0: the scene's own). Returns VFP_OK, or VFP_ERR with err. */
+vfp_status_t study_floor(study_t *st, int scene, int rays, int table_size, study_floor_t *out, char *err,
+                         size_t errlen);
 
 void study_free(study_t *st);
 
 /* study_report.c: CSV of every run, gnuplot plots, image strips, report.md and summary.json in st->dir.
- * Returns 0, or 2 with err. */
-int study_write_report(study_t *st, char *err, size_t errlen);
+ * Returns VFP_OK, or VFP_ERR with err. */
+vfp_status_t study_write_report(study_t *st, char *err, size_t errlen);
 
 #endif

@@ -67,16 +67,16 @@ static double warped_against_truth(const ref_factor_t *f, int rays, const double
     return d.psnr_db;
 }
 
-int study_floor(study_t *st, int scene, int rays, int table_size, study_floor_t *out, char *err, size_t errlen)
+vfp_status_t study_floor(study_t *st, int scene, int rays, int table_size, study_floor_t *out, char *err, size_t errlen)
 {
     const uint8_t *truth = study_truth(st, scene, err, errlen);
     if (!truth)
-        return 2;
+        return VFP_ERR;
     const sim_scene_t *s = &st->scenes[scene].scene;
     sim_ref_inputs_t in;
     if (sim_ref_inputs(s, &in)) {
         snprintf(err, errlen, "%s: out of memory for the reference's inputs", st->scenes[scene].label);
-        return 2;
+        return VFP_ERR;
     }
     ref_factor_t f;
     truth_camera_t cam;
@@ -84,7 +84,8 @@ int study_floor(study_t *st, int scene, int rays, int table_size, study_floor_t 
     const truth_opts_t opts = TRUTH_OPTS_DEFAULT;
     const size_t pixels = (size_t)s->width * s->height;
     const int N = table_size > 0 ? table_size : (int)s->params.table_size, R = rays > 0 ? rays : (int)s->params.rays;
-    int status = 2, W = 0, H = 0;
+    vfp_status_t status = VFP_ERR;
+    int W = 0, H = 0;
     double *exact = NULL, *inter = NULL, *table = NULL, *rgb = malloc(sizeof(double) * 3 * pixels);
     uint8_t *bytes = malloc(3 * pixels);
     if (!tf || !rgb || !bytes || ref_factor(&in.vol, &in.view, (int)s->width, (int)s->height, &f) ||
@@ -136,7 +137,7 @@ int study_floor(study_t *st, int scene, int rays, int table_size, study_floor_t 
         }
     }
     out->done = 1;
-    status = 0;
+    status = VFP_OK;
 done:
     free(tf);
     free(rgb);

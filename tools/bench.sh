@@ -5,9 +5,8 @@
 # every variant's 90 frames once per round, the order rotated from round to round, ratios to point taken
 # within a round; ms/frame is the median over rounds of each round's mean. Quote timings with the machine
 # they came from.
-# How long: 2 to 4 minutes on the shared 2-core development machine (2 min 5 s in the last quiet run: the
-# matrix 29 s for engine and 39 s for brainsmall, whose slow variants take most of it; tables, callgrind and
-# viewer under a minute together); ROUNDS=1 saves about a minute.
+# How long: 2 to 4 minutes on a 2-core machine, most of it the matrix (brainsmall's slow variants the longest);
+# the tables, callgrind and the viewer take under a minute together. ROUNDS=1 saves about a minute.
 cd "$(dirname "$0")/.." || exit 2
 sim=${BUILD:-build}/volfix-sim
 data=${VOLFIX_DATA:-../shared/data}

@@ -166,6 +166,11 @@ void ref_lut_correct(const ref_lut_t *lut, double seg[4]);
 /* sin and cos of an angle in binary angle units (exact 0 and +-1 at multiples of a quarter turn). */
 void ref_sincos(int32_t bau, double *s, double *c);
 
+/* The volume's dimensions and spacings within the spec's ranges (each dimension 2..REF_MAX_DIM, spacings finite
+ * and above 0, the largest at most REF_MAX_ANISOTROPY times the smallest): 0 with the smallest spacing in *spmin,
+ * or -1. ref_factor and the truth's camera check their volume with it. */
+int ref_volume_check(const ref_volume_t *vol, double *spmin);
+
 int ref_factor(const ref_volume_t *vol, const ref_view_t *view, int out_w, int out_h, ref_factor_t *f);
 
 /* Adopt another renderer's snapped offsets (2 n_k values, ou then ov, Q16.16) after checking that they belong to

@@ -106,22 +106,28 @@ void ref_factor_warp(const ref_factor_t *f, double px, double py, double *u, dou
     *v = vc + ex * mv[0] + ey * mv[1];
 }
 
-int ref_factor(const ref_volume_t *vol, const ref_view_t *view, int out_w, int out_h, ref_factor_t *f)
+int ref_volume_check(const ref_volume_t *vol, double *spmin)
 {
-    if (!vol || !view || !f || out_w < 1 || out_h < 1 || !(view->zoom > 0) || !isfinite(view->zoom))
-        return -1;
-    double spmin = INFINITY, spmax = 0;
+    double smallest = INFINITY, largest = 0;
     for (int a = 0; a < 3; a++) {
         if (vol->dims[a] < 2 || vol->dims[a] > REF_MAX_DIM || !(vol->spacing[a] > 0) || !isfinite(vol->spacing[a]))
             return -1;
-        spmin = fmin(spmin, vol->spacing[a]);
-        spmax = fmax(spmax, vol->spacing[a]);
+        smallest = fmin(smallest, vol->spacing[a]);
+        largest = fmax(largest, vol->spacing[a]);
     }
-    if (spmax > REF_MAX_ANISOTROPY * spmin)
+    if (largest > REF_MAX_ANISOTROPY * smallest)
         return -1;
-    f->given_offsets_q16 = NULL; /* the reference's own offsets until some are adopted */
+    *spmin = smallest;
+    return 0;
+}
 
-    *f = (ref_factor_t){0};
+int ref_factor(const ref_volume_t *vol, const ref_view_t *view, int out_w, int out_h, ref_factor_t *f)
+{
+    double spmin;
+    if (!vol || !view || !f || out_w < 1 || out_h < 1 || !(view->zoom > 0) || !isfinite(view->zoom) ||
+        ref_volume_check(vol, &spmin))
+        return -1;
+    *f = (ref_factor_t){0}; /* given_offsets_q16 NULL: the reference's own offsets until some are adopted */
     f->out_w = out_w;
     f->out_h = out_h;
     double diag2 = 0;

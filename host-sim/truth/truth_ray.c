@@ -4,26 +4,16 @@
 #include <math.h>
 #include <stdlib.h>
 
-#define PI 3.14159265358979323846
 #define MAX_SUBSTEPS 4096 /* per cell: a bound for absurd tolerances, never reached by the defaults */
 
-static void sincos_bau(int32_t bau, double *s, double *c);
 static void cell_segment(const ref_volume_t *vol, const truth_tf_t *tf, const truth_opts_t *opts, const int cell[3],
                          const double o[3], const double d[3], double t0, double t1, truth_acc_t *acc);
 
 int truth_camera(const ref_volume_t *vol, const ref_view_t *view, int out_w, int out_h, truth_camera_t *cam)
 {
+    double spmin, diag2 = 0;
     if (!vol || !vol->scalars || !view || !cam || out_w < 1 || out_h < 1 || !(view->zoom > 0) ||
-        !isfinite(view->zoom))
-        return -1;
-    double spmin = INFINITY, spmax = 0, diag2 = 0;
-    for (int a = 0; a < 3; a++) {
-        if (vol->dims[a] < 2 || vol->dims[a] > REF_MAX_DIM || !(vol->spacing[a] > 0) || !isfinite(vol->spacing[a]))
-            return -1;
-        spmin = fmin(spmin, vol->spacing[a]);
-        spmax = fmax(spmax, vol->spacing[a]);
-    }
-    if (spmax > REF_MAX_ANISOTROPY * spmin)
+        !isfinite(view->zoom) || ref_volume_check(vol, &spmin))
         return -1;
     for (int a = 0; a < 3; a++) {
         cam->dims[a] = vol->dims[a];
@@ -36,9 +26,9 @@ int truth_camera(const ref_volume_t *vol, const ref_view_t *view, int out_w, int
     cam->scale = view->zoom * (out_w < out_h ? out_w : out_h) / sqrt(diag2);
     /* R = Rz(roll) Rx(el) Ry(az), multiplied out */
     double sa, ca, se, ce, sr, cr;
-    sincos_bau(view->azimuth, &sa, &ca);
-    sincos_bau(view->elevation, &se, &ce);
-    sincos_bau(view->roll, &sr, &cr);
+    ref_sincos(view->azimuth, &sa, &ca);
+    ref_sincos(view->elevation, &se, &ce);
+    ref_sincos(view->roll, &sr, &cr);
     double X[3][3] = {{ca, 0, sa}, {se * sa, ce, -se * ca}, {-ce * sa, se, ce * ca}}; /* Rx(el) Ry(az) */
     for (int c = 0; c < 3; c++) {
         cam->R[0][c] = cr * X[0][c] - sr * X[1][c];
@@ -157,18 +147,6 @@ int truth_ray(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, co
 /* ---- static functions ---------------------------------------------------------------------------------- */
 
 /* Reduced to a quarter turn in integers first, so that multiples of 90 degrees give exact 0 and +-1. */
-static void sincos_bau(int32_t bau, double *s, double *c)
-{
-    int64_t t = ((int64_t)bau % 65536 + 65536) % 65536;
-    double x = (double)(t % 16384) * (2.0 * PI / 65536.0), s0 = sin(x), c0 = cos(x);
-    switch (t / 16384) {
-    case 0: *s = s0, *c = c0; break;
-    case 1: *s = c0, *c = -s0; break;
-    case 2: *s = -s0, *c = -c0; break;
-    default: *s = -c0, *c = s0; break;
-    }
-}
-
 /* The ray's piece [t0, t1] inside one cell. Along it the trilinear scalar is a cubic b0 + b1 u + b2 u^2 +
  * b3 u^3 in u in [0, 1]; it is taken as linear across sub-steps of at most max_step voxels (index and world
  * length both) and short enough that the cubic's distance from its chord, at most |f''| / (8 n^2), stays within

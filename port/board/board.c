@@ -37,23 +37,23 @@ static const char *const inputs[] = {"gpiod", "evdev", "sdl", "script"};
 /* Prototypes */
 
 static char *trim(char *s);
-static int parse_line(vfpi_board_parser_t *p, char *text);
-static int set_top(vfpi_board_parser_t *p, int key, const char *keyname, const char *value);
-static int set_knob(vfpi_board_parser_t *p, int n, int key, const char *keyname, const char *value);
-static int set_button(vfpi_board_parser_t *p, int n, int key, const char *keyname, const char *value);
+static vfp_status_t parse_line(vfpi_board_parser_t *p, char *text);
+static vfp_status_t set_top(vfpi_board_parser_t *p, int key, const char *keyname, const char *value);
+static vfp_status_t set_knob(vfpi_board_parser_t *p, int n, int key, const char *keyname, const char *value);
+static vfp_status_t set_button(vfpi_board_parser_t *p, int n, int key, const char *keyname, const char *value);
 static int index_of(const char *const *names, int count, const char *name);
-static int copy_string(vfpi_board_parser_t *p, char *dst, size_t size, const char *keyname, const char *value);
+static vfp_status_t copy_string(vfpi_board_parser_t *p, char *dst, size_t size, const char *keyname, const char *value);
 static void join_names(char *out, size_t size, const char *const *names, int count, const char *last);
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Public functions */
 
-int vfp_board_load(vfp_board_t *board, const char *path, char *err, size_t errlen)
+vfp_status_t vfp_board_load(vfp_board_t *board, const char *path, char *err, size_t errlen)
 {
     vfpi_board_parser_t *p = calloc(1, sizeof *p);
     if (!p) {
         snprintf(err, errlen, "%s: out of memory", path);
-        return 2;
+        return VFP_ERR;
     }
     p->board = board;
     p->path = path;
@@ -62,7 +62,7 @@ int vfp_board_load(vfp_board_t *board, const char *path, char *err, size_t errle
     memset(board, 0, sizeof *board);
     snprintf(board->path, sizeof board->path, "%s", path);
 
-    int status = 0;
+    vfp_status_t status = VFP_OK;
     char *text = NULL;
     size_t cap = 0;
     FILE *f = fopen(path, "r");
@@ -83,10 +83,10 @@ int vfp_board_load(vfp_board_t *board, const char *path, char *err, size_t errle
             status = vfpi_board_fail(p, p->line, "expected text, found a NUL byte");
             break;
         }
-        if ((status = parse_line(p, text)) != 0)
+        if ((status = parse_line(p, text)) != VFP_OK)
             break;
     }
-    if (status == 0)
+    if (status == VFP_OK)
         status = vfpi_board_finish(p);
 out:
     free(text);
@@ -99,7 +99,7 @@ out:
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Shared functions */
 
-int vfpi_board_fail(vfpi_board_parser_t *p, int line, const char *fmt, ...)
+vfp_status_t vfpi_board_fail(vfpi_board_parser_t *p, int line, const char *fmt, ...)
 {
     char msg[512];
     va_list ap;
@@ -110,10 +110,10 @@ int vfpi_board_fail(vfpi_board_parser_t *p, int line, const char *fmt, ...)
         snprintf(p->err, p->errlen, "%s:%d: %s", p->path, line, msg);
     else
         snprintf(p->err, p->errlen, "%s: %s", p->path, msg);
-    /* a quoted key or value may carry a vertical tab or a terminal escape from the file (found by tests/fuzz) */
+    /* a quoted key or value may carry a vertical tab or a terminal escape from the file (tests/fuzz sends them) */
     if (p->errlen)
         vfp_printable(p->err);
-    return 2;
+    return VFP_ERR;
 }
 
 /* A whole number with nothing after it, in [min, max]. */
@@ -144,14 +144,14 @@ static char *trim(char *s)
 }
 
 /* One line: blank, a comment, or KEY = VALUE with an optional comment after it. */
-static int parse_line(vfpi_board_parser_t *p, char *text)
+static vfp_status_t parse_line(vfpi_board_parser_t *p, char *text)
 {
     char *hash = strchr(text, '#');
     if (hash)
         *hash = '\0';
     char *line = trim(text);
     if (!*line)
-        return 0;
+        return VFP_OK;
     char *eq = strchr(line, '=');
     if (!eq)
         return vfpi_board_fail(p, p->line, "expected KEY = VALUE, found '%.60s'", line);
@@ -203,21 +203,21 @@ static int parse_line(vfpi_board_parser_t *p, char *text)
     return is_knob ? set_knob(p, (int)n, k, key, value) : set_button(p, (int)n, k, key, value);
 }
 
-static int duplicate(vfpi_board_parser_t *p, int *seen, const char *keyname)
+static vfp_status_t duplicate(vfpi_board_parser_t *p, int *seen, const char *keyname)
 {
     if (*seen)
         return vfpi_board_fail(p, p->line, "%s given twice (first on line %d)", keyname, *seen);
     *seen = p->line;
-    return 0;
+    return VFP_OK;
 }
 
-static int set_top(vfpi_board_parser_t *p, int key, const char *keyname, const char *value)
+static vfp_status_t set_top(vfpi_board_parser_t *p, int key, const char *keyname, const char *value)
 {
     vfp_board_t *b = p->board;
     long n;
     int v;
     if (duplicate(p, &p->top_line[key], keyname))
-        return 2;
+        return VFP_ERR;
     switch (key) {
     case T_NAME:
         return copy_string(p, b->name, sizeof b->name, keyname, value);
@@ -234,17 +234,17 @@ static int set_top(vfpi_board_parser_t *p, int key, const char *keyname, const c
             return vfpi_board_fail(p, p->line, "%s: expected a size in pixels from 1 to 16384, found '%.60s'", keyname,
                                    value);
         *(key == T_WIDTH ? &b->width : &b->height) = (uint32_t)n;
-        return 0;
+        return VFP_OK;
     case T_FORMAT:
         if (!vfpi_board_format(value, &v))
             return vfpi_board_fail(p, p->line, "unknown format '%.60s' (expected rgb565, xrgb8888 or rgb888)", value);
         b->format = (vf_format_t)v;
-        return 0;
+        return VFP_OK;
     case T_ROTATION:
         if (!vfpi_board_parse_long(value, 10, 0, 270, &n) || n % 90 != 0)
             return vfpi_board_fail(p, p->line, "%s: expected 0, 90, 180 or 270, found '%.60s'", keyname, value);
         b->rotation = (int)n;
-        return 0;
+        return VFP_OK;
     case T_INPUT:
         if (index_of(inputs, (int)(sizeof inputs / sizeof *inputs), value) < 0)
             return vfpi_board_fail(p, p->line, "unknown input '%.60s' (expected gpiod, evdev, sdl or script)", value);
@@ -257,34 +257,34 @@ static int set_top(vfpi_board_parser_t *p, int key, const char *keyname, const c
             return vfpi_board_fail(p, p->line, "%s: expected at most %zu characters with the board's directory",
                                    keyname, sizeof b->script - 1);
         snprintf(b->script, sizeof b->script, "%.*s%s", dir, p->path, value);
-        return 0;
+        return VFP_OK;
     }
     case T_CHIP:
         return copy_string(p, b->gpio_chip, sizeof b->gpio_chip, keyname, value);
     case T_THREADS:
         if (strcmp(value, "auto") == 0)
-            return 0; /* b->threads stays 0: the processors online, set in vfpi_board_finish() */
+            return VFP_OK; /* b->threads stays 0: the processors online, set in vfpi_board_finish() */
         if (!vfpi_board_parse_long(value, 10, 1, MAX_THREADS, &n))
             return vfpi_board_fail(p, p->line, "threads: expected auto or a number from 1 to %d, found '%.60s'",
                                    MAX_THREADS, value);
         b->threads = (int)n;
-        return 0;
+        return VFP_OK;
     case T_IDLE:
         if (!vfpi_board_parse_long(value, 10, 0, 60000, &n))
             return vfpi_board_fail(p, p->line, "idle_ms: expected milliseconds from 0 to 60000, found '%.60s'", value);
         b->idle_ms = (int)n;
-        return 0;
+        return VFP_OK;
     case T_OVERLAY:
         if (!vfpi_board_boolean(value, &v))
             return vfpi_board_fail(p, p->line,
                                    "overlay: expected 0 or 1 (or yes/no, on/off, true/false), found '%.60s'", value);
         b->overlay = v;
-        return 0;
+        return VFP_OK;
     }
     return vfpi_board_fail(p, p->line, "%s: internal error (unhandled key)", keyname);
 }
 
-static int parse_action(vfpi_board_parser_t *p, const char *value, int knob, vfp_action_t *out)
+static vfp_status_t parse_action(vfpi_board_parser_t *p, const char *value, int knob, vfp_action_t *out)
 {
     int a = vfpi_board_action(value);
     int is_knob_action = a >= FIRST_KNOB_ACTION && a <= LAST_KNOB_ACTION;
@@ -298,34 +298,34 @@ static int parse_action(vfpi_board_parser_t *p, const char *value, int knob, vfp
         return vfpi_board_fail(p, p->line, "'%s' is a knob action, not for a button (expected %s)", value,
                                BUTTON_ACTIONS);
     *out = (vfp_action_t)a;
-    return 0;
+    return VFP_OK;
 }
 
-static int parse_line_offset(vfpi_board_parser_t *p, const char *keyname, const char *value, int *out)
+static vfp_status_t parse_line_offset(vfpi_board_parser_t *p, const char *keyname, const char *value, int *out)
 {
     long n;
     if (!vfpi_board_parse_long(value, 10, 0, MAX_LINE_OFFSET, &n))
         return vfpi_board_fail(p, p->line, "%s: expected a line offset (a number from 0 to %d), found '%.60s'", keyname,
                                MAX_LINE_OFFSET, value);
     *out = (int)n;
-    return 0;
+    return VFP_OK;
 }
 
-static int parse_pull(vfpi_board_parser_t *p, const char *keyname, const char *value, vfp_pull_t *out)
+static vfp_status_t parse_pull(vfpi_board_parser_t *p, const char *keyname, const char *value, vfp_pull_t *out)
 {
     int v;
     if (!vfpi_board_pull(value, &v))
         return vfpi_board_fail(p, p->line, "%s: expected up, down or none, found '%.60s'", keyname, value);
     *out = (vfp_pull_t)v;
-    return 0;
+    return VFP_OK;
 }
 
-static int set_knob(vfpi_board_parser_t *p, int n, int key, const char *keyname, const char *value)
+static vfp_status_t set_knob(vfpi_board_parser_t *p, int n, int key, const char *keyname, const char *value)
 {
     vfp_knob_t *k = &p->board->knobs[n];
     long v;
     if (duplicate(p, &p->knob_line[n][key], keyname))
-        return 2;
+        return VFP_ERR;
     if (!p->knob_first[n])
         p->knob_first[n] = p->line;
     switch (key) {
@@ -346,7 +346,7 @@ static int set_knob(vfpi_board_parser_t *p, int n, int key, const char *keyname,
                                    "%s: expected a non-zero number (per detent, in the action's unit), found "
                                    "'%.60s'", keyname, value);
         k->step = d;
-        return 0;
+        return VFP_OK;
     }
     case KN_DEVICE:
         return copy_string(p, k->device, sizeof k->device, keyname, value);
@@ -354,14 +354,14 @@ static int set_knob(vfpi_board_parser_t *p, int n, int key, const char *keyname,
         int a;
         if (vfpi_board_evdev_axis(value, &a)) {
             k->axis = a;
-            return 0;
+            return VFP_OK;
         }
         if (!vfpi_board_parse_long(value, 0, 0, REL_MAX, &v))
             return vfpi_board_fail(p, p->line,
                                    "%s: expected REL_X, REL_DIAL, REL_WHEEL (or another REL_ name) or a number "
                                    "from 0 to %d, found '%.60s'", keyname, REL_MAX, value);
         k->axis = (int)v;
-        return 0;
+        return VFP_OK;
     }
     case KN_KEY_UP:
     case KN_KEY_DOWN: {
@@ -370,19 +370,19 @@ static int set_knob(vfpi_board_parser_t *p, int n, int key, const char *keyname,
             return vfpi_board_fail(p, p->line, "%s: unknown SDL key '%.60s' (expected %s)", keyname, value,
                                    SDL_KEY_NAMES);
         *(key == KN_KEY_UP ? &k->key_up : &k->key_down) = code;
-        return 0;
+        return VFP_OK;
     }
     }
     return vfpi_board_fail(p, p->line, "%s: internal error (unhandled key)", keyname);
 }
 
-static int set_button(vfpi_board_parser_t *p, int n, int key, const char *keyname, const char *value)
+static vfp_status_t set_button(vfpi_board_parser_t *p, int n, int key, const char *keyname, const char *value)
 {
     vfp_button_t *b = &p->board->buttons[n];
     long v;
     int flag;
     if (duplicate(p, &p->button_line[n][key], keyname))
-        return 2;
+        return VFP_ERR;
     if (!p->button_first[n])
         p->button_first[n] = p->line;
     switch (key) {
@@ -395,13 +395,13 @@ static int set_button(vfpi_board_parser_t *p, int n, int key, const char *keynam
             return vfpi_board_fail(p, p->line, "%s: expected 1 (pressed reads 0) or 0 (pressed reads 1), found '%.60s'",
                                    keyname, value);
         b->active_low = flag;
-        return 0;
+        return VFP_OK;
     case BT_DEBOUNCE:
         if (!vfpi_board_parse_long(value, 10, 0, 1000, &v))
             return vfpi_board_fail(p, p->line, "%s: expected milliseconds from 0 to 1000, found '%.60s'", keyname,
                                    value);
         b->debounce_ms = (int)v;
-        return 0;
+        return VFP_OK;
     case BT_ACTION:
         return parse_action(p, value, 0, &b->action);
     case BT_DEVICE:
@@ -424,13 +424,13 @@ static int index_of(const char *const *names, int count, const char *name)
     return -1;
 }
 
-static int copy_string(vfpi_board_parser_t *p, char *dst, size_t size, const char *keyname, const char *value)
+static vfp_status_t copy_string(vfpi_board_parser_t *p, char *dst, size_t size, const char *keyname, const char *value)
 {
     if (strlen(value) >= size)
         return vfpi_board_fail(p, p->line, "%s: expected at most %zu characters, found %zu", keyname, size - 1,
                                strlen(value));
     memcpy(dst, value, strlen(value) + 1);
-    return 0;
+    return VFP_OK;
 }
 
 /* "a, b, c or d" (last = " or "), or "a, b, c, d" (last = ", ") */

@@ -28,6 +28,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "status.h"
 #include "volfix.h"
 
 #define VFP_MAX_KNOBS 8
@@ -95,8 +96,8 @@ typedef struct vfp_board {
     int overlay;                  /* frame-time overlay on at start (default 0) */
 } vfp_board_t;
 
-/* Read a board file. Returns 0, or 2 with a one-line "FILE:LINE: ..." message in err. */
-int vfp_board_load(vfp_board_t *board, const char *path, char *err, size_t errlen);
+/* Read a board file. Returns VFP_OK, or VFP_ERR with a one-line "FILE:LINE: ..." message in err. */
+vfp_status_t vfp_board_load(vfp_board_t *board, const char *path, char *err, size_t errlen);
 
 /* Names, for messages and the parser. */
 const char *vfp_action_name(vfp_action_t action);

@@ -19,15 +19,15 @@
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Prototypes */
 
-static int check_dense(vfpi_board_parser_t *p, const char *what, const int *first, int count, int *count_out);
-static int check_input(vfpi_board_parser_t *p);
-static int check_lines(vfpi_board_parser_t *p);
-static int check_shared(vfpi_board_parser_t *p, int evdev, int sdl);
+static vfp_status_t check_dense(vfpi_board_parser_t *p, const char *what, const int *first, int count, int *count_out);
+static vfp_status_t check_input(vfpi_board_parser_t *p);
+static vfp_status_t check_lines(vfpi_board_parser_t *p);
+static vfp_status_t check_shared(vfpi_board_parser_t *p, int evdev, int sdl);
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Shared functions */
 
-int vfpi_board_finish(vfpi_board_parser_t *p)
+vfp_status_t vfpi_board_finish(vfpi_board_parser_t *p)
 {
     vfp_board_t *b = p->board;
     if (!b->display[0])
@@ -70,7 +70,7 @@ int vfpi_board_finish(vfpi_board_parser_t *p)
 
     if (check_dense(p, "knob", p->knob_first, VFP_MAX_KNOBS, &b->knob_count) ||
         check_dense(p, "button", p->button_first, VFP_MAX_BUTTONS, &b->button_count))
-        return 2;
+        return VFP_ERR;
     for (int i = 0; i < b->knob_count; i++) {
         vfp_knob_t *k = &b->knobs[i];
         if (!p->knob_line[i][KN_A])
@@ -108,7 +108,7 @@ int vfpi_board_finish(vfpi_board_parser_t *p)
 /* Static functions */
 
 /* Knobs (buttons) are numbered 0, 1, 2... with no gap: the count is one more than the highest index. */
-static int check_dense(vfpi_board_parser_t *p, const char *what, const int *first, int max, int *count_out)
+static vfp_status_t check_dense(vfpi_board_parser_t *p, const char *what, const int *first, int max, int *count_out)
 {
     int count = 0;
     for (int i = 0; i < max; i++)
@@ -124,11 +124,11 @@ static int check_dense(vfpi_board_parser_t *p, const char *what, const int *firs
                                what, i);
     }
     *count_out = count;
-    return 0;
+    return VFP_OK;
 }
 
 /* What the input backend needs of every knob and button, and each button's code in the backend's terms. */
-static int check_input(vfpi_board_parser_t *p)
+static vfp_status_t check_input(vfpi_board_parser_t *p)
 {
     vfp_board_t *b = p->board;
     int input_line = p->top_line[T_INPUT];
@@ -191,7 +191,7 @@ static int check_input(vfpi_board_parser_t *p)
 }
 
 /* evdev: two knobs on one device need different axes, two buttons different codes; sdl: every key does one thing. */
-static int check_shared(vfpi_board_parser_t *p, int evdev, int sdl)
+static vfp_status_t check_shared(vfpi_board_parser_t *p, int evdev, int sdl)
 {
     const vfp_board_t *b = p->board;
     for (int i = 0; i < b->knob_count; i++)
@@ -219,11 +219,11 @@ static int check_shared(vfpi_board_parser_t *p, int evdev, int sdl)
             if (bi->code == b->knobs[k].key_up || bi->code == b->knobs[k].key_down)
                 return vfpi_board_fail(p, line, "button.%d.code: that key turns knob.%d already", i, k);
     }
-    return 0;
+    return VFP_OK;
 }
 
 /* Each GPIO line serves one purpose. */
-static int check_lines(vfpi_board_parser_t *p)
+static vfp_status_t check_lines(vfpi_board_parser_t *p)
 {
     const vfp_board_t *b = p->board;
     struct use {
@@ -246,5 +246,5 @@ static int check_lines(vfpi_board_parser_t *p)
             if (j != i && uses[j].offset == uses[i].offset && uses[j].line < uses[i].line)
                 return vfpi_board_fail(p, uses[i].line, "%s: line %d is already used by %s (line %d)", uses[i].key,
                                        uses[i].offset, uses[j].key, uses[j].line);
-    return 0;
+    return VFP_OK;
 }

@@ -4,9 +4,9 @@
  * read, board_names.c holds the names a value may be given by (formats, pulls, booleans, actions, evdev axes and
  * key codes, SDL keys).
  *
- * Names: vfpi_ marks what these files share (as volume_internal.h does for the volume readers). A check returns 0,
- * or 2 with one "FILE:LINE: what was expected" line in the parser's err; a lookup or a number parser returns 1 when
- * it understood its text, else 0 (its caller writes the message).
+ * Names: vfpi_ marks what these files share (as volume_internal.h does for the volume readers). A check returns
+ * VFP_OK, or VFP_ERR with one "FILE:LINE: what was expected" line in the parser's err; a lookup or a number parser
+ * returns 1 when it understood its text, else 0 (its caller writes the message).
  */
 #ifndef VFP_BOARD_INTERNAL_H
 #define VFP_BOARD_INTERNAL_H
@@ -48,13 +48,15 @@ typedef struct vfpi_board_parser {
     char button_code[VFP_MAX_BUTTONS][64];         /* resolved once the input backend is known */
 } vfpi_board_parser_t;
 
-/* board.c: "FILE:LINE: message" (line 0: "FILE: message") into p->err; returns 2, so `return vfpi_board_fail(...)`. */
-int vfpi_board_fail(vfpi_board_parser_t *p, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+/* board.c: "FILE:LINE: message" (line 0: "FILE: message") into p->err; returns VFP_ERR, so that a check can
+ * `return vfpi_board_fail(...)`. */
+vfp_status_t vfpi_board_fail(vfpi_board_parser_t *p, int line, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
 /* board.c: a whole number with nothing after it, in [min, max] (base as strtol's); 1 if it is one, else 0. */
 int vfpi_board_parse_long(const char *s, int base, long min, long max, long *out);
 
 /* board_check.c: after the last line, the defaults of what was not given, then the checks of the whole file. */
-int vfpi_board_finish(vfpi_board_parser_t *p);
+vfp_status_t vfpi_board_finish(vfpi_board_parser_t *p);
 
 /* board_names.c: a name to what it stands for. Each returns 1 and sets the value when it knows the name, else 0;
  * names match exactly, except SDL's. */

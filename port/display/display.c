@@ -26,8 +26,8 @@ typedef struct known_display {
 /**********************
  *  STATIC PROTOTYPES
  **********************/
-static int message(char *err, size_t errlen, const vfp_board_t *board, const char *fmt, const char *name,
-                   const char *extra);
+static vfp_status_t message(char *err, size_t errlen, const vfp_board_t *board, const char *fmt, const char *name,
+                            const char *extra);
 
 /**********************
  *  STATIC VARIABLES
@@ -83,28 +83,38 @@ const vfp_display_ops_t *vfp_display_find(const char *name, const vfp_board_t *b
  *   STATIC FUNCTIONS
  **********************/
 /* "FILE: " + fmt, where fmt takes one or two strings. */
-static int message(char *err, size_t errlen, const vfp_board_t *board, const char *fmt, const char *name,
-                   const char *extra)
+static vfp_status_t message(char *err, size_t errlen, const vfp_board_t *board, const char *fmt, const char *name,
+                            const char *extra)
 {
     if (!err || !errlen)
-        return 2;
+        return VFP_ERR;
     size_t n = 0;
     if (board && board->path[0]) {
         int k = snprintf(err, errlen, "%s: ", board->path);
         n = k < 0 ? 0 : (size_t)k < errlen ? (size_t)k : errlen - 1;
     }
     snprintf(err + n, errlen - n, fmt, name, extra);
-    return 2;
+    return VFP_ERR;
 }
 
-int vfp_display_check_rect(const vfp_display_t *d, const char *name, uint32_t x, uint32_t y, uint32_t w,
-                           uint32_t h, uint32_t stride, char *err, size_t errlen)
+vfp_status_t vfp_display_check_rect(const vfp_display_t *d, const char *name, uint32_t x, uint32_t y, uint32_t w,
+                                    uint32_t h, uint32_t stride, char *err, size_t errlen)
 {
     uint64_t row_bytes = ((uint64_t)x + w) * vf_format_bytes(d->format);
     if (x > d->width || y > d->height || w > d->width - x || h > d->height - y || stride < row_bytes) {
         snprintf(err, errlen, "%s: rectangle %ux%u at (%u,%u) with stride %u does not fit the %ux%u display", name, w,
                  h, x, y, stride, d->width, d->height);
-        return 2;
+        return VFP_ERR;
     }
-    return 0;
+    return VFP_OK;
+}
+
+vfp_status_t vfp_display_check_present(const vfp_display_t *d, const char *name, uint32_t x, uint32_t y, uint32_t w,
+                                       uint32_t h, uint32_t stride, char *err, size_t errlen)
+{
+    if (!d->priv) {
+        snprintf(err, errlen, "%s display: present on a display that is not open", d->ops->name);
+        return VFP_ERR;
+    }
+    return vfp_display_check_rect(d, name, x, y, w, h, stride, err, errlen);
 }

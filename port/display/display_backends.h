@@ -36,12 +36,13 @@ struct fb_var_screeninfo; /* <linux/fb.h> */
 struct fb_fix_screeninfo;
 
 /* Takes fd (closed on failure too): reads the screen information, checks the format, maps the memory. */
-int vfp_fbdev_open_fd(vfp_display_t *d, int fd, const char *name, char *err, size_t errlen);
-/* RGB565 or XRGB8888 in packed pixels, or 2 with a message naming the device and what it found. */
-int vfp_fbdev_check(const struct fb_var_screeninfo *var, const struct fb_fix_screeninfo *fix, const char *name,
-                    vf_format_t *format, char *err, size_t errlen);
+vfp_status_t vfp_fbdev_open_fd(vfp_display_t *d, int fd, const char *name, char *err, size_t errlen);
+/* RGB565 or XRGB8888 in packed pixels, or VFP_ERR with a message naming the device and what it found. */
+vfp_status_t vfp_fbdev_check(const struct fb_var_screeninfo *var, const struct fb_fix_screeninfo *fix, const char *name,
+                             vf_format_t *format, char *err, size_t errlen);
 /* The display over memory the caller maps (and keeps): checks the format and that the visible area fits. */
-int vfp_fbdev_attach(vfp_display_t *d, const struct fb_var_screeninfo *var, const struct fb_fix_screeninfo *fix,
-                     void *mem, size_t mem_len, const char *name, char *err, size_t errlen);
+vfp_status_t vfp_fbdev_attach(vfp_display_t *d, const struct fb_var_screeninfo *var,
+                              const struct fb_fix_screeninfo *fix, void *mem, size_t mem_len, const char *name,
+                              char *err, size_t errlen);
 
 #endif /* VFP_DISPLAY_BACKENDS_H */

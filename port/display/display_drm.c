@@ -53,14 +53,14 @@ typedef struct drm_display {
 /**********************
  *  STATIC PROTOTYPES
  **********************/
-static int drm_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen);
-static int drm_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
-                       uint32_t stride, char *err, size_t errlen);
+static vfp_status_t drm_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen);
+static vfp_status_t drm_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
+                                uint32_t stride, char *err, size_t errlen);
 static void drm_close(vfp_display_t *d);
-static int open_card(vfp_display_t *d, const char *path, vf_format_t format, char *err, size_t errlen);
-static int find_output(drm_display_t *m, drmModeRes *res, char *err, size_t errlen);
+static vfp_status_t open_card(vfp_display_t *d, const char *path, vf_format_t format, char *err, size_t errlen);
+static vfp_status_t find_output(drm_display_t *m, drmModeRes *res, char *err, size_t errlen);
 static uint32_t find_crtc(int fd, drmModeRes *res, drmModeConnector *conn);
-static int create_buffer(drm_display_t *m, vf_format_t format, char *err, size_t errlen);
+static vfp_status_t create_buffer(drm_display_t *m, vf_format_t format, char *err, size_t errlen);
 static void destroy(drm_display_t *m);
 
 /**********************
@@ -71,7 +71,7 @@ const vfp_display_ops_t vfp_display_drm_ops = {"drm", drm_open, drm_present, drm
 /**********************
  *   STATIC FUNCTIONS
  **********************/
-static int drm_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen)
+static vfp_status_t drm_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen)
 {
     d->priv = NULL;
     vf_format_t format = board->format == VF_FORMAT_RGB565 ? VF_FORMAT_RGB565 : VF_FORMAT_XRGB8888;
@@ -86,7 +86,7 @@ static int drm_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_
         if (access(path, F_OK) != 0)
             continue;
         if (open_card(d, path, format, err, errlen) == 0)
-            return 0;
+            return VFP_OK;
         if (!first_reason[0])
             snprintf(first_reason, sizeof first_reason, "%s", err);
     }
@@ -95,21 +95,17 @@ static int drm_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_
     else
         snprintf(err, errlen, "no DRM card found (/dev/dri/card0 to card%d): is the KMS driver loaded?",
                  MAX_CARDS - 1);
-    return 2;
+    return VFP_ERR;
 }
 
-static int drm_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
-                       uint32_t stride, char *err, size_t errlen)
+static vfp_status_t drm_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
+                                uint32_t stride, char *err, size_t errlen)
 {
     drm_display_t *m = d->priv;
-    if (!m) {
-        snprintf(err, errlen, "drm display: present on a display that is not open");
-        return 2;
-    }
-    if (vfp_display_check_rect(d, m->path, x, y, w, h, stride, err, errlen))
-        return 2;
+    if (vfp_display_check_present(d, m ? m->path : NULL, x, y, w, h, stride, err, errlen))
+        return VFP_ERR;
     if (w == 0 || h == 0)
-        return 0;
+        return VFP_OK;
     size_t offset = (size_t)x * m->bytes, row_bytes = (size_t)w * m->bytes;
     for (uint32_t row = y; row < y + h; row++)
         memcpy(m->map + (size_t)row * m->pitch + offset, (const uint8_t *)pixels + (size_t)row * stride + offset,
@@ -117,10 +113,10 @@ static int drm_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uin
     drmModeClip clip = {(unsigned short)x, (unsigned short)y, (unsigned short)(x + w), (unsigned short)(y + h)};
     int ret = drmModeDirtyFB(m->fd, m->fb_id, &clip, 1);
     if (ret == 0 || ret == -ENOSYS)
-        return 0;
+        return VFP_OK;
     snprintf(err, errlen, "%s: DirtyFB failed: %s", m->path, strerror(-ret));
     /* A USB display (the gud driver) that was unplugged answers ENODEV from now on. */
-    return ret == -ENODEV ? VFP_DISPLAY_LOST : 2;
+    return ret == -ENODEV ? VFP_DISPLAY_LOST : VFP_ERR;
 }
 
 static void drm_close(vfp_display_t *d)
@@ -131,13 +127,13 @@ static void drm_close(vfp_display_t *d)
 }
 
 /* Everything from the open to SetCrtc on one card; on failure nothing stays open. */
-static int open_card(vfp_display_t *d, const char *path, vf_format_t format, char *err, size_t errlen)
+static vfp_status_t open_card(vfp_display_t *d, const char *path, vf_format_t format, char *err, size_t errlen)
 {
     drmModeRes *res = NULL;
     drm_display_t *m = calloc(1, sizeof *m);
     if (!m) {
         snprintf(err, errlen, "%s: out of memory", path);
-        return 2;
+        return VFP_ERR;
     }
     snprintf(m->path, sizeof m->path, "%s", path);
     m->fd = open(path, O_RDWR | O_CLOEXEC);
@@ -174,17 +170,17 @@ static int open_card(vfp_display_t *d, const char *path, vf_format_t format, cha
     d->width = m->mode.hdisplay;
     d->height = m->mode.vdisplay;
     d->format = format;
-    return 0;
+    return VFP_OK;
 
 fail:
     if (res)
         drmModeFreeResources(res);
     destroy(m);
-    return 2;
+    return VFP_ERR;
 }
 
 /* The first connected connector with modes, its preferred mode (else the first) and a CRTC for it. */
-static int find_output(drm_display_t *m, drmModeRes *res, char *err, size_t errlen)
+static vfp_status_t find_output(drm_display_t *m, drmModeRes *res, char *err, size_t errlen)
 {
     int connected = 0;
     for (int i = 0; i < res->count_connectors; i++) {
@@ -207,7 +203,7 @@ static int find_output(drm_display_t *m, drmModeRes *res, char *err, size_t errl
                     break;
                 }
             drmModeFreeConnector(conn);
-            return 0;
+            return VFP_OK;
         }
         drmModeFreeConnector(conn);
     }
@@ -215,7 +211,7 @@ static int find_output(drm_display_t *m, drmModeRes *res, char *err, size_t errl
         snprintf(err, errlen, "%s: no CRTC can drive the connected connector", m->path);
     else
         snprintf(err, errlen, "%s: no connected connector", m->path);
-    return 2;
+    return VFP_ERR;
 }
 
 /* The CRTC the connector's encoder already drives, else the first one any of its encoders can. */
@@ -243,13 +239,13 @@ static uint32_t find_crtc(int fd, drmModeRes *res, drmModeConnector *conn)
 }
 
 /* A dumb buffer of the mode's size, a framebuffer over it, and its memory mapped and cleared to black. */
-static int create_buffer(drm_display_t *m, vf_format_t format, char *err, size_t errlen)
+static vfp_status_t create_buffer(drm_display_t *m, vf_format_t format, char *err, size_t errlen)
 {
     uint32_t w = m->mode.hdisplay, h = m->mode.vdisplay;
     struct drm_mode_create_dumb create = {.width = w, .height = h, .bpp = format == VF_FORMAT_RGB565 ? 16 : 32};
     if (drmIoctl(m->fd, DRM_IOCTL_MODE_CREATE_DUMB, &create) != 0) {
         snprintf(err, errlen, "%s: cannot create a %ux%u dumb buffer: %s", m->path, w, h, strerror(errno));
-        return 2;
+        return VFP_ERR;
     }
     m->handle = create.handle;
     m->pitch = create.pitch;
@@ -261,21 +257,21 @@ static int create_buffer(drm_display_t *m, vf_format_t format, char *err, size_t
         m->fb_id = 0;
         snprintf(err, errlen, "%s: cannot add a %s framebuffer: %s", m->path,
                  format == VF_FORMAT_RGB565 ? "RGB565" : "XRGB8888", strerror(errno));
-        return 2;
+        return VFP_ERR;
     }
     struct drm_mode_map_dumb map = {.handle = m->handle};
     if (drmIoctl(m->fd, DRM_IOCTL_MODE_MAP_DUMB, &map) != 0) {
         snprintf(err, errlen, "%s: cannot map the dumb buffer: %s", m->path, strerror(errno));
-        return 2;
+        return VFP_ERR;
     }
     void *p = mmap(NULL, m->size, PROT_READ | PROT_WRITE, MAP_SHARED, m->fd, (off_t)map.offset);
     if (p == MAP_FAILED) {
         snprintf(err, errlen, "%s: cannot map the dumb buffer: %s", m->path, strerror(errno));
-        return 2;
+        return VFP_ERR;
     }
     m->map = p;
     memset(m->map, 0, m->size);
-    return 0;
+    return VFP_OK;
 }
 
 /* Gives back whatever m holds, in the reverse order of open_card. */

@@ -67,21 +67,21 @@ typedef struct gud {
 /**********************
  *  STATIC PROTOTYPES
  **********************/
-static int gud_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen);
-static int gud_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
-                       uint32_t stride, char *err, size_t errlen);
+static vfp_status_t gud_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen);
+static vfp_status_t gud_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
+                                uint32_t stride, char *err, size_t errlen);
 static void gud_close(vfp_display_t *d);
-static int parse_ids(const char *text, uint16_t ids[2][2], int *count);
-static int find_device(gud_t *g, uint16_t ids[2][2], int count, libusb_device **found);
-static int find_interface(libusb_device *dev, uint8_t *interface, uint8_t *endpoint);
-static int probe(gud_t *g, vf_format_t wanted, vfp_gud_mode_t *mode, char *err, size_t errlen);
-static int get(gud_t *g, uint8_t request, uint16_t value, uint8_t *buf, uint16_t len, int *got, char *err,
-               size_t errlen);
-static int set(gud_t *g, uint8_t request, uint16_t value, const uint8_t *buf, uint16_t len, char *err,
-               size_t errlen);
-static int set_u8(gud_t *g, uint8_t request, uint8_t value, char *err, size_t errlen);
-static int failure(gud_t *g, const char *what, int r, int ask_status, char *err, size_t errlen);
-static int send_band(gud_t *g, const vfp_gud_set_buffer_t *band, char *err, size_t errlen);
+static vfp_status_t parse_ids(const char *text, uint16_t ids[2][2], int *count);
+static vfp_status_t find_device(gud_t *g, uint16_t ids[2][2], int count, libusb_device **found);
+static vfp_status_t find_interface(libusb_device *dev, uint8_t *interface, uint8_t *endpoint);
+static vfp_status_t probe(gud_t *g, vf_format_t wanted, vfp_gud_mode_t *mode, char *err, size_t errlen);
+static vfp_status_t get(gud_t *g, uint8_t request, uint16_t value, uint8_t *buf, uint16_t len, int *got, char *err,
+                        size_t errlen);
+static vfp_status_t set(gud_t *g, uint8_t request, uint16_t value, const uint8_t *buf, uint16_t len, char *err,
+                        size_t errlen);
+static vfp_status_t set_u8(gud_t *g, uint8_t request, uint8_t value, char *err, size_t errlen);
+static vfp_status_t failure(gud_t *g, const char *what, int r, int ask_status, char *err, size_t errlen);
+static vfp_status_t send_band(gud_t *g, const vfp_gud_set_buffer_t *band, char *err, size_t errlen);
 static void destroy(gud_t *g);
 
 /**********************
@@ -92,7 +92,7 @@ const vfp_display_ops_t vfp_display_gud_ops = {"gud", gud_open, gud_present, gud
 /**********************
  *   STATIC FUNCTIONS
  **********************/
-static int gud_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen)
+static vfp_status_t gud_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen)
 {
     uint16_t ids[2][2];
     int count;
@@ -101,12 +101,12 @@ static int gud_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_
     if (parse_ids(board->display_device, ids, &count)) {
         snprintf(err, errlen, "display.device '%s': expected VID:PID in hex, like 1d50:614d",
                  board->display_device);
-        return 2;
+        return VFP_ERR;
     }
     gud_t *g = calloc(1, sizeof *g);
     if (!g) {
         snprintf(err, errlen, "gud display: out of memory");
-        return 2;
+        return VFP_ERR;
     }
     int r = libusb_init(&g->ctx);
     if (r != 0) {
@@ -114,7 +114,7 @@ static int gud_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_
         snprintf(err, errlen, "gud display: libusb_init failed: %s", libusb_strerror(r));
         goto fail;
     }
-    if (find_device(g, ids, count, &dev) != 0) {
+    if (find_device(g, ids, count, &dev) != VFP_OK) {
         if (count == 1)
             snprintf(err, errlen, "no GUD display found (VID:PID %04x:%04x): is it plugged in?", ids[0][0],
                      ids[0][1]);
@@ -166,31 +166,27 @@ static int gud_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_
     d->width = mode.hdisplay;
     d->height = mode.vdisplay;
     d->format = g->format == GUD_PIXEL_FORMAT_XRGB8888 ? VF_FORMAT_XRGB8888 : VF_FORMAT_RGB565;
-    return 0;
+    return VFP_OK;
 
 fail:
     if (dev)
         libusb_unref_device(dev);
     destroy(g);
-    return 2;
+    return VFP_ERR;
 }
 
-static int gud_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
-                       uint32_t stride, char *err, size_t errlen)
+static vfp_status_t gud_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
+                                uint32_t stride, char *err, size_t errlen)
 {
     gud_t *g = d->priv;
-    if (!g) {
-        snprintf(err, errlen, "gud display: present on a display that is not open");
-        return 2;
-    }
-    if (g->lost) {
+    if (g && g->lost) {
         snprintf(err, errlen, "%s: display gone", g->name);
         return VFP_DISPLAY_LOST;
     }
-    if (vfp_display_check_rect(d, g->name, x, y, w, h, stride, err, errlen))
-        return 2;
+    if (vfp_display_check_present(d, g ? g->name : NULL, x, y, w, h, stride, err, errlen))
+        return VFP_ERR;
     if (w == 0 || h == 0)
-        return 0;
+        return VFP_OK;
     const uint8_t *src = pixels;
     if (g->frame) {
         /* FULL_UPDATE: the device only takes whole frames, so keep one and send all of it. */
@@ -209,7 +205,7 @@ static int gud_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uin
     if (rows == 0) {
         snprintf(err, errlen, "%s: a row of %u pixels (%u bytes) is larger than the device's %u-byte buffer",
                  g->name, w, row_bytes, g->max_buffer);
-        return 2;
+        return VFP_ERR;
     }
     for (uint32_t done = 0; done < h; done += rows) {
         uint32_t n = h - done < rows ? h - done : rows;
@@ -217,11 +213,11 @@ static int gud_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uin
             memcpy(g->buf + (size_t)i * row_bytes, src + (size_t)(y + done + i) * stride + (size_t)x * g->bytes,
                    row_bytes);
         vfp_gud_set_buffer_t band = {x, y + done, w, n, n * row_bytes, 0, 0};
-        int status = send_band(g, &band, err, errlen);
+        vfp_status_t status = send_band(g, &band, err, errlen);
         if (status)
             return status;
     }
-    return 0;
+    return VFP_OK;
 }
 
 static void gud_close(vfp_display_t *d)
@@ -232,7 +228,7 @@ static void gud_close(vfp_display_t *d)
 }
 
 /* "" gives both IDs the kernel's driver knows; "VVVV:PPPP" gives one. */
-static int parse_ids(const char *text, uint16_t ids[2][2], int *count)
+static vfp_status_t parse_ids(const char *text, uint16_t ids[2][2], int *count)
 {
     if (!text || !text[0]) {
         ids[0][0] = GUD_VID_OPENMOKO;
@@ -240,20 +236,21 @@ static int parse_ids(const char *text, uint16_t ids[2][2], int *count)
         ids[1][0] = GUD_VID_MCS;
         ids[1][1] = GUD_PID_MCS;
         *count = 2;
-        return 0;
+        return VFP_OK;
     }
     unsigned vid, pid;
     int used = 0;
     if (strlen(text) != 9 || sscanf(text, "%4x:%4x%n", &vid, &pid, &used) != 2 || used != 9)
-        return 2;
+        return VFP_ERR;
     ids[0][0] = (uint16_t)vid;
     ids[0][1] = (uint16_t)pid;
     *count = 1;
-    return 0;
+    return VFP_OK;
 }
 
-/* The first device with one of the IDs and a vendor interface with a bulk OUT endpoint (referenced). */
-static int find_device(gud_t *g, uint16_t ids[2][2], int count, libusb_device **found)
+/* The first device with one of the IDs and a vendor interface with a bulk OUT endpoint (referenced), or VFP_ERR
+ * (the caller words the message). */
+static vfp_status_t find_device(gud_t *g, uint16_t ids[2][2], int count, libusb_device **found)
 {
     libusb_device **list;
     ssize_t n = libusb_get_device_list(g->ctx, &list);
@@ -264,7 +261,7 @@ static int find_device(gud_t *g, uint16_t ids[2][2], int count, libusb_device **
             continue;
         for (int k = 0; k < count; k++)
             if (dd.idVendor == ids[k][0] && dd.idProduct == ids[k][1] &&
-                find_interface(list[i], &g->interface, &g->endpoint) == 0) {
+                find_interface(list[i], &g->interface, &g->endpoint) == VFP_OK) {
                 *found = libusb_ref_device(list[i]);
                 snprintf(g->name, sizeof g->name, "%04x:%04x", dd.idVendor, dd.idProduct);
                 break;
@@ -272,15 +269,15 @@ static int find_device(gud_t *g, uint16_t ids[2][2], int count, libusb_device **
     }
     if (n >= 0)
         libusb_free_device_list(list, 1);
-    return *found ? 0 : 2;
+    return *found ? VFP_OK : VFP_ERR;
 }
 
-static int find_interface(libusb_device *dev, uint8_t *interface, uint8_t *endpoint)
+static vfp_status_t find_interface(libusb_device *dev, uint8_t *interface, uint8_t *endpoint)
 {
     struct libusb_config_descriptor *config;
     if (libusb_get_active_config_descriptor(dev, &config) != 0 &&
         libusb_get_config_descriptor(dev, 0, &config) != 0)
-        return 2;
+        return VFP_ERR;
     int found = 0;
     for (int i = 0; i < config->bNumInterfaces && !found; i++) {
         if (config->interface[i].num_altsetting < 1)
@@ -300,25 +297,25 @@ static int find_interface(libusb_device *dev, uint8_t *interface, uint8_t *endpo
         }
     }
     libusb_free_config_descriptor(config);
-    return found ? 0 : 2;
+    return found ? VFP_OK : VFP_ERR;
 }
 
 /* The kernel's probe and first commit: descriptor, formats, properties, a connected connector and its mode,
- * then the state, and the display on. Errors during open are all status 2. */
-static int probe(gud_t *g, vf_format_t wanted, vfp_gud_mode_t *mode, char *err, size_t errlen)
+ * then the state, and the display on. Errors during open are all VFP_ERR. */
+static vfp_status_t probe(gud_t *g, vf_format_t wanted, vfp_gud_mode_t *mode, char *err, size_t errlen)
 {
     uint8_t buf[GUD_CONNECTOR_MAX_NUM_MODES * GUD_DISPLAY_MODE_SIZE]; /* the largest reply: 3072 bytes */
     int got;
     if (get(g, GUD_REQ_GET_DESCRIPTOR, 0, buf, GUD_DISPLAY_DESCRIPTOR_SIZE, &got, err, errlen))
-        return 2;
+        return VFP_ERR;
     char why[160];
     if (vfp_gud_parse_descriptor(buf, (size_t)got, &g->desc, why, sizeof why)) {
         snprintf(err, errlen, "%s: %s", g->name, why);
-        return 2;
+        return VFP_ERR;
     }
 
     if (get(g, GUD_REQ_GET_FORMATS, 0, buf, GUD_FORMATS_MAX_NUM, &got, err, errlen))
-        return 2;
+        return VFP_ERR;
     int has565 = 0, has8888 = 0;
     for (int i = 0; i < got; i++) {
         has565 |= buf[i] == GUD_PIXEL_FORMAT_RGB565;
@@ -333,7 +330,7 @@ static int probe(gud_t *g, vf_format_t wanted, vfp_gud_mode_t *mode, char *err, 
     else {
         snprintf(err, errlen, "%s: the display takes neither RGB565 nor XRGB8888 (it lists %d other formats)",
                  g->name, got);
-        return 2;
+        return VFP_ERR;
     }
     g->bytes = g->format == GUD_PIXEL_FORMAT_XRGB8888 ? 4 : 2;
 
@@ -341,11 +338,11 @@ static int probe(gud_t *g, vf_format_t wanted, vfp_gud_mode_t *mode, char *err, 
     vfp_gud_property_t props[MAX_STATE_PROPS];
     int nprops = 0, has_rotation = 0;
     if (get(g, GUD_REQ_GET_PROPERTIES, 0, buf, GUD_PROPERTIES_MAX_NUM * GUD_PROPERTY_SIZE, &got, err, errlen))
-        return 2;
+        return VFP_ERR;
     if (got % GUD_PROPERTY_SIZE) {
         snprintf(err, errlen, "%s: GET_PROPERTIES gave %d bytes, not a multiple of %d", g->name, got,
                  GUD_PROPERTY_SIZE);
-        return 2;
+        return VFP_ERR;
     }
     for (int i = 0; i < got / GUD_PROPERTY_SIZE; i++) {
         vfp_gud_property_t p;
@@ -355,27 +352,27 @@ static int probe(gud_t *g, vf_format_t wanted, vfp_gud_mode_t *mode, char *err, 
 
     if (get(g, GUD_REQ_GET_CONNECTORS, 0, buf, GUD_CONNECTORS_MAX_NUM * GUD_CONNECTOR_DESCRIPTOR_SIZE, &got, err,
             errlen))
-        return 2;
+        return VFP_ERR;
     if (got == 0 || got % GUD_CONNECTOR_DESCRIPTOR_SIZE) {
         snprintf(err, errlen, "%s: GET_CONNECTORS gave %d bytes (expected connectors of %d bytes)", g->name, got,
                  GUD_CONNECTOR_DESCRIPTOR_SIZE);
-        return 2;
+        return VFP_ERR;
     }
     int connectors = got / GUD_CONNECTOR_DESCRIPTOR_SIZE, connector = -1;
     for (int i = 0; i < connectors && connector < 0; i++) {
         if (get(g, GUD_REQ_GET_CONNECTOR_STATUS, (uint16_t)i, buf, 1, &got, err, errlen))
-            return 2;
+            return VFP_ERR;
         if (got == 1 && (buf[0] & GUD_CONNECTOR_STATUS_CONNECTED_MASK) == GUD_CONNECTOR_STATUS_CONNECTED)
             connector = i;
     }
     if (connector < 0) {
         snprintf(err, errlen, "%s: none of its %d connectors has a display connected", g->name, connectors);
-        return 2;
+        return VFP_ERR;
     }
 
     if (get(g, GUD_REQ_GET_CONNECTOR_PROPERTIES, (uint16_t)connector, buf,
             GUD_CONNECTOR_PROPERTIES_MAX_NUM * GUD_PROPERTY_SIZE, &got, err, errlen))
-        return 2;
+        return VFP_ERR;
     for (int i = 0; i + GUD_PROPERTY_SIZE <= got; i += GUD_PROPERTY_SIZE) {
         vfp_gud_property_t p;
         vfp_gud_parse_property(buf + i, &p);
@@ -386,37 +383,37 @@ static int probe(gud_t *g, vf_format_t wanted, vfp_gud_mode_t *mode, char *err, 
         props[nprops++] = (vfp_gud_property_t){GUD_PROPERTY_ROTATION, GUD_ROTATION_0};
 
     if (get(g, GUD_REQ_GET_CONNECTOR_MODES, (uint16_t)connector, buf, sizeof buf, &got, err, errlen))
-        return 2;
+        return VFP_ERR;
     if (vfp_gud_pick_mode(buf, (size_t)got, mode) == 0 || mode->hdisplay == 0 || mode->vdisplay == 0) {
         snprintf(err, errlen, "%s: connector %d offers no display mode (GET_CONNECTOR_MODES gave %d bytes)",
                  g->name, connector, got);
-        return 2;
+        return VFP_ERR;
     }
 
     size_t len = vfp_gud_pack_state(buf, sizeof buf, mode, g->format, (uint8_t)connector, props, nprops);
     if (set(g, GUD_REQ_SET_STATE_CHECK, 0, buf, (uint16_t)len, err, errlen) ||
         set_u8(g, GUD_REQ_SET_CONTROLLER_ENABLE, 1, err, errlen))
-        return 2;
+        return VFP_ERR;
     g->enabled = 1;
     if (set(g, GUD_REQ_SET_STATE_COMMIT, 0, NULL, 0, err, errlen) ||
         set_u8(g, GUD_REQ_SET_DISPLAY_ENABLE, 1, err, errlen))
-        return 2;
-    return 0;
+        return VFP_ERR;
+    return VFP_OK;
 }
 
-/* A GET request; the reply's length in *got. Returns 0, 2 or VFP_DISPLAY_LOST with err. */
-static int get(gud_t *g, uint8_t request, uint16_t value, uint8_t *buf, uint16_t len, int *got, char *err,
-               size_t errlen)
+/* A GET request; the reply's length in *got. Returns VFP_OK, VFP_ERR or VFP_DISPLAY_LOST with err. */
+static vfp_status_t get(gud_t *g, uint8_t request, uint16_t value, uint8_t *buf, uint16_t len, int *got, char *err,
+                        size_t errlen)
 {
     int r = libusb_control_transfer(g->handle, GUD_REQTYPE_IN, request, value, g->interface, buf, len,
                                     CONTROL_TIMEOUT_MS);
     *got = r < 0 ? 0 : r;
-    return r < 0 ? failure(g, vfp_gud_request_name(request), r, 1, err, errlen) : 0;
+    return r < 0 ? failure(g, vfp_gud_request_name(request), r, 1, err, errlen) : VFP_OK;
 }
 
 /* A SET request with its payload (len may be 0); then GET_STATUS if the device wants it after every SET. */
-static int set(gud_t *g, uint8_t request, uint16_t value, const uint8_t *buf, uint16_t len, char *err,
-               size_t errlen)
+static vfp_status_t set(gud_t *g, uint8_t request, uint16_t value, const uint8_t *buf, uint16_t len, char *err,
+                        size_t errlen)
 {
     const char *what = vfp_gud_request_name(request);
     int r = libusb_control_transfer(g->handle, GUD_REQTYPE_OUT, request, value, g->interface, (uint8_t *)buf, len,
@@ -425,7 +422,7 @@ static int set(gud_t *g, uint8_t request, uint16_t value, const uint8_t *buf, ui
         return failure(g, what, r, 1, err, errlen);
     if (r != len) {
         snprintf(err, errlen, "%s: %s sent %d of %u bytes", g->name, what, r, len);
-        return 2;
+        return VFP_ERR;
     }
     if (g->desc.flags & GUD_DISPLAY_FLAG_STATUS_ON_SET) {
         uint8_t status;
@@ -436,20 +433,20 @@ static int set(gud_t *g, uint8_t request, uint16_t value, const uint8_t *buf, ui
         if (r == 1 && status != GUD_STATUS_OK) {
             snprintf(err, errlen, "%s: %s failed: device status %u (%s)", g->name, what, status,
                      vfp_gud_status_text(status));
-            return 2;
+            return VFP_ERR;
         }
     }
-    return 0;
+    return VFP_OK;
 }
 
-static int set_u8(gud_t *g, uint8_t request, uint8_t value, char *err, size_t errlen)
+static vfp_status_t set_u8(gud_t *g, uint8_t request, uint8_t value, char *err, size_t errlen)
 {
     return set(g, request, 0, &value, 1, err, errlen);
 }
 
 /* The message for a failed transfer, and whether the display is lost (gone from the bus) or just failed. A
  * stalled control request is explained by GET_STATUS (ask_status). */
-static int failure(gud_t *g, const char *what, int r, int ask_status, char *err, size_t errlen)
+static vfp_status_t failure(gud_t *g, const char *what, int r, int ask_status, char *err, size_t errlen)
 {
     if (r == LIBUSB_ERROR_NO_DEVICE || r == LIBUSB_ERROR_IO) {
         g->lost = 1;
@@ -463,20 +460,20 @@ static int failure(gud_t *g, const char *what, int r, int ask_status, char *err,
         if (s == 1) {
             snprintf(err, errlen, "%s: %s stalled: device status %u (%s)", g->name, what, status,
                      vfp_gud_status_text(status));
-            return 2;
+            return VFP_ERR;
         }
         if (s == LIBUSB_ERROR_NO_DEVICE || s == LIBUSB_ERROR_IO)
             return failure(g, what, s, 0, err, errlen);
         snprintf(err, errlen, "%s: %s stalled (and GET_STATUS: %s)", g->name, what,
                  s < 0 ? libusb_strerror(s) : "no status byte");
-        return 2;
+        return VFP_ERR;
     }
     snprintf(err, errlen, "%s: %s failed: %s", g->name, what, libusb_strerror(r));
-    return 2;
+    return VFP_ERR;
 }
 
 /* One band of rows, already packed in g->buf: SET_BUFFER (compressed if that pays) and the bulk transfer. */
-static int send_band(gud_t *g, const vfp_gud_set_buffer_t *band, char *err, size_t errlen)
+static vfp_status_t send_band(gud_t *g, const vfp_gud_set_buffer_t *band, char *err, size_t errlen)
 {
     vfp_gud_set_buffer_t req = *band;
     uint8_t *data = g->buf;
@@ -496,7 +493,7 @@ static int send_band(gud_t *g, const vfp_gud_set_buffer_t *band, char *err, size
     if (!(g->desc.flags & GUD_DISPLAY_FLAG_FULL_UPDATE) || g->failed) {
         uint8_t wire[GUD_SET_BUFFER_SIZE];
         vfp_gud_pack_set_buffer(wire, &req);
-        int status = set(g, GUD_REQ_SET_BUFFER, 0, wire, sizeof wire, err, errlen);
+        vfp_status_t status = set(g, GUD_REQ_SET_BUFFER, 0, wire, sizeof wire, err, errlen);
         if (status)
             return status;
     }
@@ -509,9 +506,9 @@ static int send_band(gud_t *g, const vfp_gud_set_buffer_t *band, char *err, size
         return failure(g, "bulk transfer", r, 0, err, errlen);
     if ((uint32_t)sent != length) {
         snprintf(err, errlen, "%s: bulk transfer sent %d of %u bytes", g->name, sent, length);
-        return 2;
+        return VFP_ERR;
     }
-    return 0;
+    return VFP_OK;
 }
 
 /* Gives back what g holds, in the reverse order of gud_open; after a loss, nothing more is sent. */

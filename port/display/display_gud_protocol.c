@@ -24,17 +24,18 @@ static void put64(uint8_t *p, uint64_t v);
 /**********************
  *   GLOBAL FUNCTIONS
  **********************/
-int vfp_gud_parse_descriptor(const uint8_t *buf, size_t len, vfp_gud_descriptor_t *desc, char *err, size_t errlen)
+vfp_status_t vfp_gud_parse_descriptor(const uint8_t *buf, size_t len, vfp_gud_descriptor_t *desc, char *err,
+                                      size_t errlen)
 {
     if (len != GUD_DISPLAY_DESCRIPTOR_SIZE) {
         snprintf(err, errlen, "display descriptor of %zu bytes (expected %d)", len, GUD_DISPLAY_DESCRIPTOR_SIZE);
-        return 2;
+        return VFP_ERR;
     }
     uint32_t magic = get32(buf);
     if (magic != GUD_DISPLAY_MAGIC) {
         snprintf(err, errlen, "not a GUD display: descriptor magic 0x%08x (expected 0x%08x)", magic,
                  GUD_DISPLAY_MAGIC);
-        return 2;
+        return VFP_ERR;
     }
     desc->version = buf[4];
     desc->flags = get32(buf + 5);
@@ -46,15 +47,15 @@ int vfp_gud_parse_descriptor(const uint8_t *buf, size_t len, vfp_gud_descriptor_
     desc->max_height = get32(buf + 26);
     if (desc->version != 1) {
         snprintf(err, errlen, "GUD protocol version %u is not supported (expected 1)", desc->version);
-        return 2;
+        return VFP_ERR;
     }
     if (!desc->max_width || !desc->max_height || desc->min_width > desc->max_width ||
         desc->min_height > desc->max_height) {
         snprintf(err, errlen, "bad size limits in the display descriptor: %ux%u to %ux%u", desc->min_width,
                  desc->min_height, desc->max_width, desc->max_height);
-        return 2;
+        return VFP_ERR;
     }
-    return 0;
+    return VFP_OK;
 }
 
 void vfp_gud_parse_mode(const uint8_t *buf, vfp_gud_mode_t *mode)

@@ -5,7 +5,7 @@
  */
 #include "display.h"
 
-static int none_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen)
+static vfp_status_t none_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen)
 {
     (void)err;
     (void)errlen;
@@ -13,11 +13,11 @@ static int none_open(vfp_display_t *d, const vfp_board_t *board, char *err, size
     d->height = board->height;
     d->format = board->format;
     d->priv = NULL;
-    return 0;
+    return VFP_OK;
 }
 
-static int none_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
-                        uint32_t stride, char *err, size_t errlen)
+static vfp_status_t none_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
+                                 uint32_t stride, char *err, size_t errlen)
 {
     (void)pixels;
     return vfp_display_check_rect(d, "none display", x, y, w, h, stride, err, errlen);

@@ -40,11 +40,11 @@ typedef struct png_display {
 /**********************
  *  STATIC PROTOTYPES
  **********************/
-static int png_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen);
-static int png_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
-                       uint32_t stride, char *err, size_t errlen);
+static vfp_status_t png_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen);
+static vfp_status_t png_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
+                                uint32_t stride, char *err, size_t errlen);
 static void png_close(vfp_display_t *d);
-static int make_dirs(const char *dir, char *err, size_t errlen);
+static vfp_status_t make_dirs(const char *dir, char *err, size_t errlen);
 
 /**********************
  *  GLOBAL VARIABLES
@@ -54,7 +54,7 @@ const vfp_display_ops_t vfp_display_png_ops = {"png", png_open, png_present, png
 /**********************
  *   STATIC FUNCTIONS
  **********************/
-static int png_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen)
+static vfp_status_t png_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen)
 {
     d->priv = NULL;
     const char *dir = board->display_device[0] ? board->display_device : DEFAULT_DIR;
@@ -62,18 +62,18 @@ static int png_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_
     if (board->width == 0 || board->height == 0 || board->width > 16384 || board->height > 16384) {
         snprintf(err, errlen, "%s: display 'png' needs a size from 1x1 to 16384x16384 (the board gives %ux%u)", dir,
                  board->width, board->height);
-        return 2;
+        return VFP_ERR;
     }
     if (bytes == 0) {
         snprintf(err, errlen, "%s: unknown pixel format %d", dir, (int)board->format);
-        return 2;
+        return VFP_ERR;
     }
     if (strlen(dir) >= VFP_PATH_LEN - 16) {
         snprintf(err, errlen, "%s: directory name too long", dir);
-        return 2;
+        return VFP_ERR;
     }
     if (make_dirs(dir, err, errlen))
-        return 2;
+        return VFP_ERR;
 
     png_display_t *p = calloc(1, sizeof *p);
     if (!p)
@@ -90,27 +90,23 @@ static int png_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_
     d->width = board->width;
     d->height = board->height;
     d->format = board->format;
-    return 0;
+    return VFP_OK;
 
 nomem:
     if (p)
         free(p->frame);
     free(p);
     snprintf(err, errlen, "%s: out of memory for a %ux%u frame", dir, board->width, board->height);
-    return 2;
+    return VFP_ERR;
 }
 
-static int png_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
-                       uint32_t stride, char *err, size_t errlen)
+static vfp_status_t png_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
+                                uint32_t stride, char *err, size_t errlen)
 {
     png_display_t *p = d->priv;
     uint32_t bytes = vf_format_bytes(d->format);
-    if (!p) {
-        snprintf(err, errlen, "png display: present on a display that is not open");
-        return 2;
-    }
-    if (vfp_display_check_rect(d, p->dir, x, y, w, h, stride, err, errlen))
-        return 2;
+    if (vfp_display_check_present(d, p ? p->dir : NULL, x, y, w, h, stride, err, errlen))
+        return VFP_ERR;
     for (uint32_t row = y; row < y + h; row++)
         memcpy(p->frame + (size_t)row * p->stride + (size_t)x * bytes,
                (const uint8_t *)pixels + (size_t)row * stride + (size_t)x * bytes, (size_t)w * bytes);
@@ -120,9 +116,9 @@ static int png_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uin
     char path[VFP_PATH_LEN + 32];
     snprintf(path, sizeof path, "%s/frame-%05u.png", p->dir, p->next);
     if (vfp_png_write_rgb(path, p->rgb, d->width, d->height, err, errlen))
-        return 2;
+        return VFP_ERR;
     p->next++;
-    return 0;
+    return VFP_OK;
 }
 
 static void png_close(vfp_display_t *d)
@@ -137,7 +133,7 @@ static void png_close(vfp_display_t *d)
 }
 
 /* mkdir -p: each missing component in turn. */
-static int make_dirs(const char *dir, char *err, size_t errlen)
+static vfp_status_t make_dirs(const char *dir, char *err, size_t errlen)
 {
     char path[VFP_PATH_LEN];
     snprintf(path, sizeof path, "%s", dir);
@@ -148,7 +144,7 @@ static int make_dirs(const char *dir, char *err, size_t errlen)
         *slash = 0;
         if (mkdir(path, 0777) != 0 && errno != EEXIST) {
             snprintf(err, errlen, "%s: cannot create directory: %s", path, strerror(errno));
-            return 2;
+            return VFP_ERR;
         }
         *slash = saved;
         if (!saved)
@@ -157,11 +153,11 @@ static int make_dirs(const char *dir, char *err, size_t errlen)
     struct stat st;
     if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
         snprintf(err, errlen, "%s: not a directory", dir);
-        return 2;
+        return VFP_ERR;
     }
     if (access(dir, W_OK) != 0) {
         snprintf(err, errlen, "%s: cannot write frames there: %s", dir, strerror(errno));
-        return 2;
+        return VFP_ERR;
     }
-    return 0;
+    return VFP_OK;
 }

@@ -2,7 +2,7 @@
  * display_sdl.c: an SDL2 window titled "volfix" on a desktop, board width x height (shown twice as large when the
  * longer side is under 320 pixels, so a small panel's layout stays readable). Frames go into a streaming texture
  * in the board's format and are rendered at once. Closing the window is an input event: input_sdl.c polls SDL's
- * events; this file only shares SDL's initialisation with it (sdl_shared.h).
+ * events; this file only shares SDL's initialisation with it (sdl_video.h).
  */
 #ifdef VFP_HAVE_SDL
 
@@ -11,7 +11,7 @@
  *********************/
 #include "display.h"
 #include "display_backends.h"
-#include "sdl_shared.h"
+#include "sdl_video.h"
 
 #include <SDL.h>
 #include <stdio.h>
@@ -36,16 +36,16 @@ typedef struct sdl_display {
 /**********************
  *  STATIC PROTOTYPES
  **********************/
-static int sdl_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen);
-static int sdl_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
-                       uint32_t stride, char *err, size_t errlen);
+static vfp_status_t sdl_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen);
+static vfp_status_t sdl_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
+                                uint32_t stride, char *err, size_t errlen);
 static void sdl_close(vfp_display_t *d);
 static Uint32 sdl_format(vf_format_t format);
 
 /**********************
  *  STATIC VARIABLES
  **********************/
-/* References to SDL's video subsystem (sdl_shared.h). SDL's own state is process-wide, so this count is too;
+/* References to SDL's video subsystem (sdl_video.h). SDL's own state is process-wide, so this count is too;
  * it is only touched from the viewer's thread. */
 static int sdl_users;
 
@@ -57,14 +57,14 @@ const vfp_display_ops_t vfp_display_sdl_ops = {"sdl", sdl_open, sdl_present, sdl
 /**********************
  *   GLOBAL FUNCTIONS
  **********************/
-int vfp_sdl_init(char *err, size_t errlen)
+vfp_status_t vfp_sdl_init(char *err, size_t errlen)
 {
     if (sdl_users == 0 && SDL_Init(SDL_INIT_VIDEO) != 0) {
         snprintf(err, errlen, "SDL_Init failed: %s", SDL_GetError());
-        return 2;
+        return VFP_ERR;
     }
     sdl_users++;
-    return 0;
+    return VFP_OK;
 }
 
 void vfp_sdl_quit(void)
@@ -76,24 +76,24 @@ void vfp_sdl_quit(void)
 /**********************
  *   STATIC FUNCTIONS
  **********************/
-static int sdl_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen)
+static vfp_status_t sdl_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_t errlen)
 {
     d->priv = NULL;
     uint32_t w = board->width, h = board->height;
     if (w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE) {
         snprintf(err, errlen, "display 'sdl' needs a size from 1x1 to %dx%d (the board gives %ux%u)", MAX_SIDE,
                  MAX_SIDE, w, h);
-        return 2;
+        return VFP_ERR;
     }
     Uint32 format = sdl_format(board->format);
     if (format == SDL_PIXELFORMAT_UNKNOWN) {
         snprintf(err, errlen, "display 'sdl': unknown pixel format %d", (int)board->format);
-        return 2;
+        return VFP_ERR;
     }
     sdl_display_t *s = calloc(1, sizeof *s);
     if (!s) {
         snprintf(err, errlen, "display 'sdl': out of memory");
-        return 2;
+        return VFP_ERR;
     }
     if (vfp_sdl_init(err, errlen))
         goto fail;
@@ -122,7 +122,7 @@ static int sdl_open(vfp_display_t *d, const vfp_board_t *board, char *err, size_
     d->width = w;
     d->height = h;
     d->format = board->format;
-    return 0;
+    return VFP_OK;
 
 fail:
     if (s->texture)
@@ -134,31 +134,27 @@ fail:
     if (s->initialised)
         vfp_sdl_quit();
     free(s);
-    return 2;
+    return VFP_ERR;
 }
 
-static int sdl_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
-                       uint32_t stride, char *err, size_t errlen)
+static vfp_status_t sdl_present(vfp_display_t *d, uint32_t x, uint32_t y, uint32_t w, uint32_t h, const void *pixels,
+                                uint32_t stride, char *err, size_t errlen)
 {
     sdl_display_t *s = d->priv;
     uint32_t bytes = vf_format_bytes(d->format);
-    if (!s) {
-        snprintf(err, errlen, "sdl display: present on a display that is not open");
-        return 2;
-    }
-    if (vfp_display_check_rect(d, "sdl display", x, y, w, h, stride, err, errlen))
-        return 2;
+    if (vfp_display_check_present(d, "sdl display", x, y, w, h, stride, err, errlen))
+        return VFP_ERR;
     if (w == 0 || h == 0)
-        return 0;
+        return VFP_OK;
     SDL_Rect rect = {(int)x, (int)y, (int)w, (int)h};
     const uint8_t *first = (const uint8_t *)pixels + (size_t)y * stride + (size_t)x * bytes;
     if (SDL_UpdateTexture(s->texture, &rect, first, (int)stride) != 0 ||
         SDL_RenderCopy(s->renderer, s->texture, NULL, NULL) != 0) {
         snprintf(err, errlen, "sdl display: %s", SDL_GetError());
-        return 2;
+        return VFP_ERR;
     }
     SDL_RenderPresent(s->renderer);
-    return 0;
+    return VFP_OK;
 }
 
 static void sdl_close(vfp_display_t *d)

@@ -18,6 +18,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "status.h"
+
 /* USB IDs the kernel's gud driver matches (gud_drv.c, gud_id_table), with the vendor-specific interface class. */
 #define GUD_VID_OPENMOKO 0x1d50
 #define GUD_PID_OPENMOKO 0x614d
@@ -119,9 +121,9 @@ typedef struct vfp_gud_set_buffer {
     uint32_t compressed_length; /* bytes on the wire when compressed */
 } vfp_gud_set_buffer_t;
 
-/* Checks the size, magic, version (1) and limits as the kernel does. Returns 0, or 2 with a message. */
-int vfp_gud_parse_descriptor(const uint8_t *buf, size_t len, vfp_gud_descriptor_t *desc, char *err,
-                             size_t errlen);
+/* Checks the size, magic, version (1) and limits as the kernel does. Returns VFP_OK, or VFP_ERR with a message. */
+vfp_status_t vfp_gud_parse_descriptor(const uint8_t *buf, size_t len, vfp_gud_descriptor_t *desc, char *err,
+                                      size_t errlen);
 
 /* The display mode at buf (24 bytes), and back. */
 void vfp_gud_parse_mode(const uint8_t *buf, vfp_gud_mode_t *mode);

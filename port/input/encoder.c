@@ -9,8 +9,9 @@
 
 /* Indexed by (old state << 2) | new state, a state being (A << 1) | B. A valid single-bit change moves one step;
  * no change and an impossible double change (both lines flipped: a missed edge or a bounce) move none.
- * Positive is A leading B: 00 -> 10 -> 11 -> 01 -> 00, which is clockwise on the common encoders (EC11 and
- * the like, A and B as printed on the part); swap a and b in the board file when a knob turns the wrong way. */
+ * Positive is A leading B, the states in the order 00, 10, 11, 01, 00, which is clockwise on the common encoders
+ * (EC11 and the like, A and B as printed on the part); swap a and b in the board file when a knob turns the wrong
+ * way. */
 static const signed char transition[16] = {
     0,  -1, +1, 0,  /* from 00 to 00, 01, 10, 11 */
     +1, 0,  0,  -1, /* from 01 */

@@ -128,18 +128,7 @@ int vfp_gpio_decoder_read(vfp_gpio_decoder_t *dec, vfp_event_t *events, int max,
 {
     for (int b = 0; b < dec->button_count; b++)
         settle(dec, b, now_ns);
-    int n = 0, i = 0;
-    for (; i < dec->queued && n < max; i++)
-        if (dec->queue[i].type != VFP_EV_TURN || dec->queue[i].steps != 0)
-            events[n++] = dec->queue[i];
-    memmove(dec->queue, dec->queue + i, sizeof dec->queue[0] * (size_t)(dec->queued - i));
-    dec->queued -= i;
-    for (int k = 0; k < dec->knob_count; k++)
-        dec->turn_slot[k] = -1;
-    for (int j = 0; j < dec->queued; j++)
-        if (dec->queue[j].type == VFP_EV_TURN)
-            dec->turn_slot[dec->queue[j].control] = j;
-    return n;
+    return vfpi_events_report(dec->queue, &dec->queued, dec->turn_slot, dec->knob_count, events, max);
 }
 
 /* The earliest time read() will have something without a new edge: 1 (at once) when events are queued, else the

@@ -55,10 +55,10 @@ typedef struct vfpi_gpiod {
 } vfpi_gpiod_t;
 
 /* gpiod_v1.c or gpiod_v2.c. hw_open requests g->lines on the chip labelled g->label and gives the decoder their
- * levels; it returns 0, or 2 with err, and hw_close (safe on a g that hw_open failed on) gives everything back.
- * hw_fd is the fd to poll. hw_collect reads what the kernel has queued, at most max edges; *read_ns is the horizon
+ * levels; it returns VFP_OK, or VFP_ERR with err, and hw_close (safe on a g that hw_open failed on) gives
+ * everything back. hw_fd is the fd to poll. hw_collect reads what the kernel has queued, at most max edges; *read_ns is the horizon
  * for vfp_gpio_decoder_edges (0: decode everything). It returns how many, or -1 with err when the chip is gone. */
-int vfpi_gpiod_hw_open(vfpi_gpiod_t *g, char *err, size_t errlen);
+vfp_status_t vfpi_gpiod_hw_open(vfpi_gpiod_t *g, char *err, size_t errlen);
 int vfpi_gpiod_hw_fd(const vfpi_gpiod_t *g);
 int vfpi_gpiod_hw_collect(vfpi_gpiod_t *g, vfp_gpio_edge_t *edges, int max, uint64_t *read_ns, char *err,
                           size_t errlen);

@@ -23,7 +23,7 @@ static void list_labels(char *out, size_t size);
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Shared functions */
 
-int vfpi_gpiod_hw_open(vfpi_gpiod_t *g, char *err, size_t errlen)
+vfp_status_t vfpi_gpiod_hw_open(vfpi_gpiod_t *g, char *err, size_t errlen)
 {
     /* harmless values before anything can fail: vfpi_gpiod_hw_close follows a failed open */
     g->epoll_fd = -1;
@@ -39,13 +39,13 @@ int vfpi_gpiod_hw_open(vfpi_gpiod_t *g, char *err, size_t errlen)
         else
             snprintf(err, errlen, "gpio chip '%s': %s%s (%s)", g->label, strerror(e), vfpi_gpiod_hint(e),
                      labels);
-        return 2;
+        return VFP_ERR;
     }
     if (g->line_count > 1) {
         g->epoll_fd = epoll_create1(EPOLL_CLOEXEC);
         if (g->epoll_fd < 0) {
             snprintf(err, errlen, "epoll_create1: %s", strerror(errno));
-            return 2;
+            return VFP_ERR;
         }
     }
     for (int i = 0; i < g->line_count; i++) {
@@ -57,7 +57,7 @@ int vfpi_gpiod_hw_open(vfpi_gpiod_t *g, char *err, size_t errlen)
         if (!line || gpiod_line_request_both_edges_events_flags(line, VFPI_GPIOD_CONSUMER, flags) < 0) {
             snprintf(err, errlen, "gpio chip '%s' line %u: %s%s", g->label, off, strerror(errno),
                      vfpi_gpiod_hint(errno));
-            return 2;
+            return VFP_ERR;
         }
         g->handles[i] = line;
         int level = gpiod_line_get_value(line);
@@ -65,17 +65,17 @@ int vfpi_gpiod_hw_open(vfpi_gpiod_t *g, char *err, size_t errlen)
         int fl = fd >= 0 ? fcntl(fd, F_GETFL) : -1;
         if (level < 0 || fl < 0 || fcntl(fd, F_SETFL, fl | O_NONBLOCK) < 0) {
             snprintf(err, errlen, "gpio chip '%s' line %u: %s", g->label, off, strerror(errno));
-            return 2;
+            return VFP_ERR;
         }
         g->fds[i] = fd;
         vfp_gpio_decoder_set_level(g->dec, off, level);
         struct epoll_event ev = {.events = EPOLLIN, .data.u32 = (uint32_t)i};
         if (g->epoll_fd >= 0 && epoll_ctl(g->epoll_fd, EPOLL_CTL_ADD, fd, &ev) < 0) {
             snprintf(err, errlen, "gpio chip '%s' line %u: epoll_ctl: %s", g->label, off, strerror(errno));
-            return 2;
+            return VFP_ERR;
         }
     }
-    return 0;
+    return VFP_OK;
 }
 
 int vfpi_gpiod_hw_fd(const vfpi_gpiod_t *g)

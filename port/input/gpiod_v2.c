@@ -22,9 +22,9 @@ static struct gpiod_chip *open_by_label(const char *label, char *err, size_t err
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Shared functions */
 
-int vfpi_gpiod_hw_open(vfpi_gpiod_t *g, char *err, size_t errlen)
+vfp_status_t vfpi_gpiod_hw_open(vfpi_gpiod_t *g, char *err, size_t errlen)
 {
-    int status = 2;
+    vfp_status_t status = VFP_ERR;
     struct gpiod_chip *chip = open_by_label(g->label, err, errlen);
     struct gpiod_line_settings *settings = gpiod_line_settings_new();
     struct gpiod_line_config *line_cfg = gpiod_line_config_new();
@@ -70,7 +70,7 @@ int vfpi_gpiod_hw_open(vfpi_gpiod_t *g, char *err, size_t errlen)
         }
         vfp_gpio_decoder_set_level(g->dec, g->lines[i].offset, v == GPIOD_LINE_VALUE_ACTIVE);
     }
-    status = 0;
+    status = VFP_OK;
 out:
     /* the request stands on its own: the chip and the configs are not needed after it */
     if (req_cfg)

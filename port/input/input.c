@@ -47,3 +47,20 @@ const vfp_input_ops_t *vfp_input_find(const char *name, const vfp_board_t *board
     snprintf(err, errlen, "%s: unknown input '%s' (expected gpiod, evdev, sdl or script)", where, name);
     return NULL;
 }
+
+int vfpi_events_report(vfp_event_t *queue, int *queued, int *turn_slot, int knob_count, vfp_event_t *events,
+                       int max)
+{
+    int n = 0, i = 0;
+    for (; i < *queued && n < max; i++)
+        if (queue[i].type != VFP_EV_TURN || queue[i].steps != 0)
+            events[n++] = queue[i];
+    memmove(queue, queue + i, sizeof queue[0] * (size_t)(*queued - i));
+    *queued -= i;
+    for (int k = 0; k < knob_count; k++)
+        turn_slot[k] = -1;
+    for (int j = 0; j < *queued; j++)
+        if (queue[j].type == VFP_EV_TURN)
+            turn_slot[queue[j].control] = j;
+    return n;
+}

@@ -16,6 +16,7 @@
 #include <stdint.h>
 
 #include "board/board.h"
+#include "status.h"
 
 typedef enum vfp_event_type {
     VFP_EV_TURN,    /* knob `control` turned `steps` detents (signed; positive clockwise) */
@@ -35,7 +36,7 @@ typedef struct vfp_input vfp_input_t;
 
 typedef struct vfp_input_ops {
     const char *name; /* the board's input = NAME */
-    int (*open)(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen);
+    vfp_status_t (*open)(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen);
     int (*fd)(vfp_input_t *in);                      /* to poll for reading, or -1 */
     uint64_t (*deadline_ns)(vfp_input_t *in);        /* the next time read() has something without an fd (0: none) */
     int (*read)(vfp_input_t *in, vfp_event_t *events, int max, uint64_t now_ns, char *err, size_t errlen);

@@ -25,18 +25,28 @@ extern const vfp_input_ops_t vfp_input_sdl_ops; /* input_sdl.c */
 extern const vfp_input_ops_t vfp_input_script_ops; /* input_script.c */
 
 /* ---------------------------------------------------------------------------------------------------------- */
+/* input.c: the report step of "drain, accumulate, report" that the GPIO decoder and evdev share. Their events
+ * wait in a queue in arrival order, and a knob's turns since the last read add up in one event, the one
+ * turn_slot[knob] points at (-1: none). */
+
+/* Moves the queue's first events (at most max) to events, leaving out turns that added up to nothing, and points
+ * turn_slot at the turns that stay queued. Returns how many went out. */
+int vfpi_events_report(vfp_event_t *queue, int *queued, int *turn_slot, int knob_count, vfp_event_t *events,
+                       int max);
+
+/* ---------------------------------------------------------------------------------------------------------- */
 /* input_evdev.c: open from descriptors the caller opened (pipes in tests), one per distinct device of the board,
  * in the order the board first names them. The input owns the fds from here on, also when this fails. */
 
-int vfp_evdev_open_fds(vfp_input_t *in, const vfp_board_t *board, const int *fds, int count, char *err,
-                       size_t errlen);
+vfp_status_t vfp_evdev_open_fds(vfp_input_t *in, const vfp_board_t *board, const int *fds, int count, char *err,
+                                size_t errlen);
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* input_script.c: a script from a string, its times counted from start_ns; `name` stands for the file in
  * messages. */
 
-int vfp_script_load_string(vfp_input_t *in, const vfp_board_t *board, const char *text, const char *name,
-                           uint64_t start_ns, char *err, size_t errlen);
+vfp_status_t vfp_script_load_string(vfp_input_t *in, const vfp_board_t *board, const char *text, const char *name,
+                                    uint64_t start_ns, char *err, size_t errlen);
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* gpio_decoder.c: the GPIO backend's decoder, which needs no libgpiod (compiled in every build): (line, level,

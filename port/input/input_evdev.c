@@ -50,15 +50,15 @@ typedef struct evdev {
     char removed_msg[VFP_PATH_LEN + 64];
 } evdev_t;
 
-static int evdev_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen);
+static vfp_status_t evdev_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen);
 static int evdev_fd(vfp_input_t *in);
 static uint64_t evdev_deadline(vfp_input_t *in);
 static int evdev_read(vfp_input_t *in, vfp_event_t *events, int max, uint64_t now_ns, char *err, size_t errlen);
 static void evdev_close(vfp_input_t *in);
 static int list_devices(const vfp_board_t *board, const char **paths);
 static int device_index(const char *const *paths, int count, const char *path);
-static int check_device(evdev_t *e, int d, char *err, size_t errlen);
-static int drain(evdev_t *e, int d, uint64_t now_ns);
+static vfp_status_t check_device(evdev_t *e, int d, char *err, size_t errlen);
+static void drain(evdev_t *e, int d, uint64_t now_ns);
 static void handle(evdev_t *e, int d, const struct input_event *ev, uint64_t now_ns);
 static void resync_keys(evdev_t *e, int d, uint64_t now_ns);
 static int push(evdev_t *e, vfp_event_type_t type, int control, int steps, uint64_t time_ns);
@@ -78,8 +78,8 @@ const vfp_input_ops_t vfp_input_evdev_ops = {
 /* The seam for tests (input_backends.h): one fd per distinct device of the board, in the order the board first
  * names them (knob 0's device, knob 1's..., then the buttons'). The input owns the fds from here on, also when
  * this fails. */
-int vfp_evdev_open_fds(vfp_input_t *in, const vfp_board_t *board, const int *fds, int count, char *err,
-                       size_t errlen)
+vfp_status_t vfp_evdev_open_fds(vfp_input_t *in, const vfp_board_t *board, const int *fds, int count, char *err,
+                                size_t errlen)
 {
     const char *paths[MAX_DEVICES];
     int want = list_devices(board, paths);
@@ -129,7 +129,7 @@ int vfp_evdev_open_fds(vfp_input_t *in, const vfp_board_t *board, const int *fds
         }
     }
     in->priv = e;
-    return 0;
+    return VFP_OK;
 
 fail:
     if (e && e->epoll_fd >= 0)
@@ -137,13 +137,13 @@ fail:
     for (int d = count - 1; d >= 0; d--)
         close(fds[d]);
     free(e);
-    return 2;
+    return VFP_ERR;
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Static functions: the operations */
 
-static int evdev_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen)
+static vfp_status_t evdev_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen)
 {
     (void)script;
     const char *paths[MAX_DEVICES];
@@ -161,7 +161,7 @@ static int evdev_open(vfp_input_t *in, const vfp_board_t *board, const char *scr
                 close(fds[d]);
             in->ops = &vfp_input_evdev_ops;
             in->priv = NULL;
-            return 2;
+            return VFP_ERR;
         }
     }
     return vfp_evdev_open_fds(in, board, fds, count, err, errlen);
@@ -194,19 +194,7 @@ static int evdev_read(vfp_input_t *in, vfp_event_t *events, int max, uint64_t no
         return -1;
     }
 
-    /* report: the queue's first events, turns that summed to nothing left out */
-    int n = 0, i = 0;
-    for (; i < e->queued && n < max; i++)
-        if (e->queue[i].type != VFP_EV_TURN || e->queue[i].steps != 0)
-            events[n++] = e->queue[i];
-    memmove(e->queue, e->queue + i, sizeof e->queue[0] * (size_t)(e->queued - i));
-    e->queued -= i;
-    for (int k = 0; k < e->knob_count; k++)
-        e->turn_slot[k] = -1;
-    for (int j = 0; j < e->queued; j++)
-        if (e->queue[j].type == VFP_EV_TURN)
-            e->turn_slot[e->queue[j].control] = j;
-    return n;
+    return vfpi_events_report(e->queue, &e->queued, e->turn_slot, e->knob_count, events, max);
 }
 
 static void evdev_close(vfp_input_t *in)
@@ -248,13 +236,13 @@ static int device_index(const char *const *paths, int count, const char *path)
 
 /* Non-blocking, kernel times on CLOCK_MONOTONIC, and (where the device answers) the axes and keys the board
  * expects of it, so that a wrong path is told at open rather than by a knob that does nothing. */
-static int check_device(evdev_t *e, int d, char *err, size_t errlen)
+static vfp_status_t check_device(evdev_t *e, int d, char *err, size_t errlen)
 {
     device_t *dev = &e->devices[d];
     int flags = fcntl(dev->fd, F_GETFL);
     if (flags < 0 || fcntl(dev->fd, F_SETFL, flags | O_NONBLOCK) < 0) {
         snprintf(err, errlen, "%s: %s", dev->path, strerror(errno));
-        return 2;
+        return VFP_ERR;
     }
     int clock = CLOCK_MONOTONIC;
     dev->kernel_time = ioctl(dev->fd, EVIOCSCLOCKID, &clock) == 0;
@@ -267,20 +255,21 @@ static int check_device(evdev_t *e, int d, char *err, size_t errlen)
             (e->knob_axis[k] < 0 || e->knob_axis[k] > REL_MAX || !TEST_BIT(rel, (unsigned)e->knob_axis[k]))) {
             snprintf(err, errlen, "%s: no relative axis %d for knob.%d (a rotary-encoder reports REL_X (0) by "
                      "default, or the axis of its linux,axis)", dev->path, e->knob_axis[k], k);
-            return 2;
+            return VFP_ERR;
         }
     for (int b = 0; b < e->button_count; b++)
         if (e->button_device[b] == d && have_keys &&
             (e->button_code[b] <= 0 || e->button_code[b] > KEY_MAX || !TEST_BIT(keys, (unsigned)e->button_code[b]))) {
             snprintf(err, errlen, "%s: no key %d for button.%d (the gpio-keys node's linux,code)", dev->path,
                      e->button_code[b], b);
-            return 2;
+            return VFP_ERR;
         }
-    return 0;
+    return VFP_OK;
 }
 
-/* Read everything pending on device d (as long as the queue has room) into the queue. */
-static int drain(evdev_t *e, int d, uint64_t now_ns)
+/* Read everything pending on device d (as long as the queue has room) into the queue; a device that is gone sets
+ * e->removed. */
+static void drain(evdev_t *e, int d, uint64_t now_ns)
 {
     device_t *dev = &e->devices[d];
     struct input_event buf[CHUNK];
@@ -289,7 +278,7 @@ static int drain(evdev_t *e, int d, uint64_t now_ns)
         if (got < 0 && errno == EINTR)
             continue;
         if (got < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
-            return 0;
+            return;
         if (got <= 0) {
             /* ENODEV is the kernel's word for an unplugged device; end of file is a pipe's or socket's */
             e->removed = 1;
@@ -297,13 +286,12 @@ static int drain(evdev_t *e, int d, uint64_t now_ns)
                 snprintf(e->removed_msg, sizeof e->removed_msg, "%s: removed", dev->path);
             else
                 snprintf(e->removed_msg, sizeof e->removed_msg, "%s: %s", dev->path, strerror(errno));
-            return -1;
+            return;
         }
         size_t count = (size_t)got / sizeof buf[0];
         for (size_t i = 0; i < count; i++)
             handle(e, d, &buf[i], now_ns);
     }
-    return 0;
 }
 
 static void handle(evdev_t *e, int d, const struct input_event *ev, uint64_t now_ns)
@@ -333,7 +321,7 @@ static void handle(evdev_t *e, int d, const struct input_event *ev, uint64_t now
             if (e->turn_slot[k] >= 0) {
                 e->queue[e->turn_slot[k]].steps += ev->value;
                 e->queue[e->turn_slot[k]].time_ns = t;
-            } else if (push(e, VFP_EV_TURN, k, ev->value, t) == 0) {
+            } else if (push(e, VFP_EV_TURN, k, ev->value, t)) {
                 e->turn_slot[k] = e->queued - 1;
             }
         }
@@ -362,12 +350,12 @@ static void resync_keys(evdev_t *e, int d, uint64_t now_ns)
     }
 }
 
-/* Returns 0, or -1 when the queue is full (drain() stops while CHUNK slots remain, so only a flood of
- * SYN_DROPPED resyncs could get here; the event is then lost). */
+/* 1 when queued; 0 when the queue is full (drain() stops while CHUNK slots remain, so only a flood of SYN_DROPPED
+ * resyncs could get here; the event is then lost). */
 static int push(evdev_t *e, vfp_event_type_t type, int control, int steps, uint64_t time_ns)
 {
     if (e->queued >= QUEUE)
-        return -1;
+        return 0;
     e->queue[e->queued++] = (vfp_event_t){.type = type, .control = control, .steps = steps, .time_ns = time_ns};
-    return 0;
+    return 1;
 }

@@ -22,7 +22,7 @@
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Prototypes */
 
-static int gpiod_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen);
+static vfp_status_t gpiod_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen);
 static int gpiod_fd(vfp_input_t *in);
 static uint64_t gpiod_deadline(vfp_input_t *in);
 static int gpiod_read(vfp_input_t *in, vfp_event_t *events, int max, uint64_t now_ns, char *err, size_t errlen);
@@ -52,7 +52,7 @@ const char *vfpi_gpiod_hint(int e)
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Static functions */
 
-static int gpiod_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen)
+static vfp_status_t gpiod_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen)
 {
     (void)script;
     in->ops = &vfp_input_gpiod_ops;
@@ -61,7 +61,7 @@ static int gpiod_open(vfp_input_t *in, const vfp_board_t *board, const char *scr
     if (!g || !(g->dec = vfp_gpio_decoder_new(board))) {
         snprintf(err, errlen, "%s: out of memory", board->path);
         free(g);
-        return 2;
+        return VFP_ERR;
     }
     snprintf(g->label, sizeof g->label, "%s", board->gpio_chip);
     g->line_count = list_lines(board, g->lines);
@@ -69,10 +69,10 @@ static int gpiod_open(vfp_input_t *in, const vfp_board_t *board, const char *scr
         vfpi_gpiod_hw_close(g);
         vfp_gpio_decoder_free(g->dec);
         free(g);
-        return 2;
+        return VFP_ERR;
     }
     in->priv = g;
-    return 0;
+    return VFP_OK;
 }
 
 static int gpiod_fd(vfp_input_t *in)

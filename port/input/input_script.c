@@ -29,16 +29,17 @@ typedef struct script {
     int next;            /* the first event not read yet */
 } script_t;
 
-static int script_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen);
+static vfp_status_t script_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err,
+                                size_t errlen);
 static int script_fd(vfp_input_t *in);
 static uint64_t script_deadline(vfp_input_t *in);
 static int script_read(vfp_input_t *in, vfp_event_t *events, int max, uint64_t now_ns, char *err, size_t errlen);
 static void script_close(vfp_input_t *in);
-static int parse(script_t *s, const vfp_board_t *board, char *text, const char *name, uint64_t start_ns, char *err,
-                 size_t errlen);
+static vfp_status_t parse(script_t *s, const vfp_board_t *board, char *text, const char *name, uint64_t start_ns,
+                          char *err, size_t errlen);
 static int parse_int(const char *s, long long min, long long max, long long *out);
 static char *read_file(const char *path, char *err, size_t errlen);
-static int printable(char *err, size_t errlen);
+static vfp_status_t printable(char *err, size_t errlen);
 
 const vfp_input_ops_t vfp_input_script_ops = {
     .name = "script",
@@ -54,8 +55,8 @@ const vfp_input_ops_t vfp_input_script_ops = {
 
 /* The seam for tests: a script from a string, its times counted from start_ns. `name` stands for the file in
  * messages. On success in->ops and in->priv are set; on failure nothing is left allocated. */
-int vfp_script_load_string(vfp_input_t *in, const vfp_board_t *board, const char *text, const char *name,
-                           uint64_t start_ns, char *err, size_t errlen)
+vfp_status_t vfp_script_load_string(vfp_input_t *in, const vfp_board_t *board, const char *text, const char *name,
+                                    uint64_t start_ns, char *err, size_t errlen)
 {
     in->ops = &vfp_input_script_ops;
     in->priv = NULL;
@@ -69,7 +70,7 @@ int vfp_script_load_string(vfp_input_t *in, const vfp_board_t *board, const char
         goto fail;
     free(copy);
     in->priv = s;
-    return 0;
+    return VFP_OK;
 fail:
     free(copy);
     if (s)
@@ -81,13 +82,13 @@ fail:
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Static functions: the operations */
 
-static int script_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen)
+static vfp_status_t script_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen)
 {
     const char *path = script && *script ? script : board ? board->script : "";
     if (!*path) {
         snprintf(err, errlen, "%s: input = script needs a script (input.script in the board file, or --script "
                  "FILE)", board && board->path[0] ? board->path : "volfix");
-        return 2;
+        return VFP_ERR;
     }
     char *text = read_file(path, err, errlen);
     if (!text)
@@ -95,7 +96,7 @@ static int script_open(vfp_input_t *in, const vfp_board_t *board, const char *sc
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     uint64_t now = (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-    int status = vfp_script_load_string(in, board, text, path, now, err, errlen);
+    vfp_status_t status = vfp_script_load_string(in, board, text, path, now, err, errlen);
     free(text);
     return status;
 }
@@ -138,22 +139,23 @@ static void script_close(vfp_input_t *in)
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Static functions: parsing */
 
+/* 1 when added, 0 when out of memory. */
 static int add(script_t *s, vfp_event_t ev)
 {
     if (s->count == s->cap) {
         int cap = s->cap ? s->cap * 2 : 64;
         vfp_event_t *grown = realloc(s->events, sizeof *grown * (size_t)cap);
         if (!grown)
-            return -1;
+            return 0;
         s->events = grown;
         s->cap = cap;
     }
     s->events[s->count++] = ev;
-    return 0;
+    return 1;
 }
 
-static int parse(script_t *s, const vfp_board_t *board, char *text, const char *name, uint64_t start_ns, char *err,
-                 size_t errlen)
+static vfp_status_t parse(script_t *s, const vfp_board_t *board, char *text, const char *name, uint64_t start_ns,
+                          char *err, size_t errlen)
 {
     int knobs = board ? board->knob_count : VFP_MAX_KNOBS, buttons = board ? board->button_count : VFP_MAX_BUTTONS;
     long long last_ms = 0;
@@ -180,12 +182,12 @@ static int parse(script_t *s, const vfp_board_t *board, char *text, const char *
         if (!parse_int(tok[0], 0, MAX_TIME_MS, &ms)) {
             snprintf(err, errlen, "%s:%d: expected a time in milliseconds (0 to %lld) first, found '%.40s'", name,
                      line, MAX_TIME_MS, tok[0]);
-            return 2;
+            return VFP_ERR;
         }
         if (ms < last_ms) {
             snprintf(err, errlen, "%s:%d: time %lld is before the previous event's %lld (times must not decrease)",
                      name, line, ms, last_ms);
-            return 2;
+            return VFP_ERR;
         }
         last_ms = ms;
         vfp_event_t ev = {.time_ns = start_ns + (uint64_t)ms * 1000000u};
@@ -193,7 +195,7 @@ static int parse(script_t *s, const vfp_board_t *board, char *text, const char *
         if (strcmp(verb, "turn") == 0) {
             if (ntok != 4) {
                 snprintf(err, errlen, "%s:%d: expected 'TIME_MS turn KNOB STEPS'", name, line);
-                return 2;
+                return VFP_ERR;
             }
             if (!parse_int(tok[2], 0, LLONG_MAX, &index) || index >= knobs) {
                 if (knobs == 0)
@@ -201,18 +203,18 @@ static int parse(script_t *s, const vfp_board_t *board, char *text, const char *
                 else
                     snprintf(err, errlen, "%s:%d: turn: expected a knob from 0 to %d, found '%.40s'", name, line,
                              knobs - 1, tok[2]);
-                return 2;
+                return VFP_ERR;
             }
             if (!parse_int(tok[3], -MAX_STEPS, MAX_STEPS, &steps) || steps == 0) {
                 snprintf(err, errlen, "%s:%d: turn: expected detents, a non-zero number from %d to %d, found "
                          "'%.40s'", name, line, -MAX_STEPS, MAX_STEPS, tok[3]);
-                return 2;
+                return VFP_ERR;
             }
             ev.type = VFP_EV_TURN;
         } else if (strcmp(verb, "press") == 0 || strcmp(verb, "release") == 0) {
             if (ntok != 3) {
                 snprintf(err, errlen, "%s:%d: expected 'TIME_MS %s BUTTON'", name, line, verb);
-                return 2;
+                return VFP_ERR;
             }
             if (!parse_int(tok[2], 0, LLONG_MAX, &index) || index >= buttons) {
                 if (buttons == 0)
@@ -220,37 +222,37 @@ static int parse(script_t *s, const vfp_board_t *board, char *text, const char *
                 else
                     snprintf(err, errlen, "%s:%d: %s: expected a button from 0 to %d, found '%.40s'", name, line,
                              verb, buttons - 1, tok[2]);
-                return 2;
+                return VFP_ERR;
             }
             ev.type = verb[0] == 'p' ? VFP_EV_PRESS : VFP_EV_RELEASE;
         } else if (strcmp(verb, "quit") == 0) {
             if (ntok != 2) {
                 snprintf(err, errlen, "%s:%d: expected 'TIME_MS quit'", name, line);
-                return 2;
+                return VFP_ERR;
             }
             ev.type = VFP_EV_QUIT;
         } else {
             snprintf(err, errlen, "%s:%d: unknown event '%.40s' (expected turn, press, release or quit)", name, line,
                      verb);
-            return 2;
+            return VFP_ERR;
         }
         ev.control = (int)index;
         ev.steps = (int)steps;
-        if (add(s, ev)) {
+        if (!add(s, ev)) {
             snprintf(err, errlen, "%s:%d: out of memory", name, line);
-            return 2;
+            return VFP_ERR;
         }
     }
-    return 0;
+    return VFP_OK;
 }
 
-/* A quoted word may carry a control byte from the file (a terminal escape, a form feed; found by tests/fuzz).
- * Returns 2, for `return printable()`. */
-static int printable(char *err, size_t errlen)
+/* A quoted word may carry a control byte from the file (a terminal escape, a form feed; tests/fuzz sends them).
+ * Returns VFP_ERR, for `return printable()`. */
+static vfp_status_t printable(char *err, size_t errlen)
 {
     if (errlen)
         vfp_printable(err);
-    return 2;
+    return VFP_ERR;
 }
 
 static int parse_int(const char *s, long long min, long long max, long long *out)

@@ -1,5 +1,5 @@
 /* input_sdl.c: the keys of the SDL window (VFP_HAVE_SDL) as knobs and buttons, for a desktop. The window belongs to
- * the SDL display (display_sdl.c); SDL itself is shared through sdl_shared.h. A key press of a knob's key_up or
+ * the SDL display (display_sdl.c); SDL itself is shared through sdl_video.h. A key press of a knob's key_up or
  * key_down turns it one detent (held down, the key's auto-repeat keeps turning it); a button's key gives press and
  * release; closing the window is VFP_EV_QUIT.
  *
@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "display/sdl_shared.h"
+#include "display/sdl_video.h"
 
 #define POLL_NS 10000000u /* how often the viewer should look at SDL's queue */
 
@@ -27,7 +27,7 @@ typedef struct sdl_input {
     uint64_t next_look_ns; /* 10 ms after the last read: when SDL's queue is due a look again */
 } sdl_input_t;
 
-static int sdl_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen);
+static vfp_status_t sdl_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen);
 static int sdl_fd(vfp_input_t *in);
 static uint64_t sdl_deadline(vfp_input_t *in);
 static int sdl_read(vfp_input_t *in, vfp_event_t *events, int max, uint64_t now_ns, char *err, size_t errlen);
@@ -47,7 +47,7 @@ const vfp_input_ops_t vfp_input_sdl_ops = {
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Static functions: the operations */
 
-static int sdl_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen)
+static vfp_status_t sdl_open(vfp_input_t *in, const vfp_board_t *board, const char *script, char *err, size_t errlen)
 {
     (void)script;
     in->ops = &vfp_input_sdl_ops;
@@ -55,11 +55,11 @@ static int sdl_open(vfp_input_t *in, const vfp_board_t *board, const char *scrip
     sdl_input_t *s = calloc(1, sizeof *s);
     if (!s) {
         snprintf(err, errlen, "%s: out of memory", board->path);
-        return 2;
+        return VFP_ERR;
     }
     if (vfp_sdl_init(err, errlen)) {
         free(s);
-        return 2;
+        return VFP_ERR;
     }
     s->knob_count = board->knob_count;
     s->button_count = board->button_count;
@@ -71,7 +71,7 @@ static int sdl_open(vfp_input_t *in, const vfp_board_t *board, const char *scrip
         s->code[b] = board->buttons[b].code;
     s->next_look_ns = 1; /* at once */
     in->priv = s;
-    return 0;
+    return VFP_OK;
 }
 
 static int sdl_fd(vfp_input_t *in)

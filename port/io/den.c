@@ -34,12 +34,12 @@ int vfpi_is_den(const unsigned char *head, size_t n, uint64_t file_bytes)
     return count == vfpi_load32(head + OFF_MAP_LENGTH, 0) && file_bytes == HDR_BYTES + count;
 }
 
-int vfpi_load_den(vfp_volume_t *vol, const char *path, char *err, size_t errlen)
+vfp_status_t vfpi_load_den(vfp_volume_t *vol, const char *path, char *err, size_t errlen)
 {
     unsigned char hdr[HDR_BYTES];
     size_t n;
     if (vfpi_read_head(path, 0, hdr, sizeof hdr, &n, err, errlen))
-        return 2;
+        return VFP_ERR;
     if (n < HDR_BYTES)
         return vfpi_fail(err, errlen, path, 0, "too short for a VolPack .den header: %zu bytes (expected at least %d)",
                          n, HDR_BYTES);
@@ -59,7 +59,7 @@ int vfpi_load_den(vfp_volume_t *vol, const char *path, char *err, size_t errlen)
                          map_length, (unsigned long long)d[0], (unsigned long long)d[1], (unsigned long long)d[2],
                          (unsigned long long)count);
     if (vfpi_check_dims(d, path, 0, err, errlen))
-        return 2;
+        return VFP_ERR;
     uint32_t dims[3] = {(uint32_t)d[0], (uint32_t)d[1], (uint32_t)d[2]};
     /* .den files carry no voxel size: unit spacing. */
     for (int a = 0; a < 3; a++)

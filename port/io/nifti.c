@@ -28,8 +28,8 @@
 /**********************
  *  STATIC PROTOTYPES
  **********************/
-static int parse_header(vfp_volume_t *vol, const unsigned char *hdr, int big, const char *path, int gzip,
-                        uint32_t dims[3], vf_voxel_t *type, double *vox_offset, char *err, size_t errlen);
+static vfp_status_t parse_header(vfp_volume_t *vol, const unsigned char *hdr, int big, const char *path, int gzip,
+                                 uint32_t dims[3], vf_voxel_t *type, double *vox_offset, char *err, size_t errlen);
 static int datatype_voxel(int datatype, vf_voxel_t *type);
 static const char *datatype_name(int datatype);
 static int16_t load_i16(const unsigned char *p, int big);
@@ -49,12 +49,12 @@ int vfpi_is_nifti(const unsigned char *head, size_t n)
            memcmp(head + 4, "n+2", 4) == 0;
 }
 
-int vfpi_load_nifti(vfp_volume_t *vol, const char *path, int gzip, char *err, size_t errlen)
+vfp_status_t vfpi_load_nifti(vfp_volume_t *vol, const char *path, int gzip, char *err, size_t errlen)
 {
     unsigned char hdr[VFPI_HEAD_BYTES];
     size_t n;
     if (vfpi_read_head(path, gzip, hdr, sizeof hdr, &n, err, errlen))
-        return 2;
+        return VFP_ERR;
     if (n >= 8 && (vfpi_load32(hdr, 0) == NIFTI2_BYTES || vfpi_load32(hdr, 1) == NIFTI2_BYTES))
         return vfpi_fail(err, errlen, path, 0, "NIfTI-2 is not supported (expected NIfTI-1, sizeof_hdr 348)");
     if (n < HDR_BYTES)
@@ -80,22 +80,22 @@ int vfpi_load_nifti(vfp_volume_t *vol, const char *path, int gzip, char *err, si
     vf_voxel_t type = VF_VOXEL_U8;
     double vox_offset = 0.0;
     if (parse_header(vol, hdr, big, path, gzip, dims, &type, &vox_offset, err, errlen))
-        return 2;
+        return VFP_ERR;
     vfpi_source_t src = {.path = path, .byte_skip = (int64_t)vox_offset, .gzip = gzip};
     size_t bytes;
     if (vfpi_read_voxels(vol, dims, type, &src, &bytes, err, errlen))
-        return 2;
+        return VFP_ERR;
     if (vfpi_type_bytes(type) == 2)
         vfpi_to_native16(vol->data, bytes / 2, big);
-    return 0;
+    return VFP_OK;
 }
 
 /**********************
  *   STATIC FUNCTIONS
  **********************/
 
-static int parse_header(vfp_volume_t *vol, const unsigned char *hdr, int big, const char *path, int gzip,
-                        uint32_t dims[3], vf_voxel_t *type, double *vox_offset, char *err, size_t errlen)
+static vfp_status_t parse_header(vfp_volume_t *vol, const unsigned char *hdr, int big, const char *path, int gzip,
+                                 uint32_t dims[3], vf_voxel_t *type, double *vox_offset, char *err, size_t errlen)
 {
     int dim[8];
     for (int i = 0; i < 8; i++)
@@ -116,7 +116,7 @@ static int parse_header(vfp_volume_t *vol, const unsigned char *hdr, int big, co
         d[a] = (uint64_t)dim[a + 1];
     }
     if (vfpi_check_dims(d, path, 0, err, errlen))
-        return 2;
+        return VFP_ERR;
     for (int a = 0; a < 3; a++)
         dims[a] = (uint32_t)d[a];
 
@@ -136,7 +136,7 @@ static int parse_header(vfp_volume_t *vol, const unsigned char *hdr, int big, co
         if (s == 0.0)
             s = 1.0;
         if (vfpi_check_spacing(s, a, path, 0, err, errlen))
-            return 2;
+            return VFP_ERR;
         vol->spacing[a] = s;
     }
 
@@ -166,7 +166,7 @@ static int parse_header(vfp_volume_t *vol, const unsigned char *hdr, int big, co
     }
     vol->slope = slope;
     vol->inter = inter;
-    return 0;
+    return VFP_OK;
 }
 
 static int datatype_voxel(int datatype, vf_voxel_t *type)

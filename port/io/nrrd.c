@@ -40,6 +40,14 @@ typedef enum field_id {
     F_IGNORED = F_USED
 } field_id_t;
 
+/* What read_line found. */
+typedef enum line_result {
+    LINE_READ,     /* a line, in the buffer */
+    LINE_END,      /* the end of the file, nothing read */
+    LINE_TOO_LONG, /* longer than the buffer */
+    LINE_BINARY,   /* a NUL byte in it */
+} line_result_t;
+
 typedef struct header {
     const char *path;
     unsigned line;           /* the line being read, 1-based */
@@ -59,17 +67,18 @@ typedef struct header {
 /**********************
  *  STATIC PROTOTYPES
  **********************/
-static int read_header(header_t *h, FILE *file, char *line, char *err, size_t errlen);
-static int read_line(FILE *file, char *buf, size_t cap);
-static int parse_line(header_t *h, char *line, char *err, size_t errlen);
-static int parse_field(header_t *h, field_id_t id, const char *name, char *value, char *err, size_t errlen);
-static int parse_type(header_t *h, const char *value, char *err, size_t errlen);
-static int parse_sizes(header_t *h, const char *value, char *err, size_t errlen);
-static int parse_doubles(header_t *h, const char *name, const char *value, double out[3], char *err, size_t errlen);
-static int parse_directions(header_t *h, const char *value, char *err, size_t errlen);
+static vfp_status_t read_header(header_t *h, FILE *file, char *line, char *err, size_t errlen);
+static line_result_t read_line(FILE *file, char *buf, size_t cap);
+static vfp_status_t parse_line(header_t *h, char *line, char *err, size_t errlen);
+static vfp_status_t parse_field(header_t *h, field_id_t id, const char *name, char *value, char *err, size_t errlen);
+static vfp_status_t parse_type(header_t *h, const char *value, char *err, size_t errlen);
+static vfp_status_t parse_sizes(header_t *h, const char *value, char *err, size_t errlen);
+static vfp_status_t parse_doubles(header_t *h, const char *name, const char *value, double out[3], char *err,
+                                  size_t errlen);
+static vfp_status_t parse_directions(header_t *h, const char *value, char *err, size_t errlen);
 static int parse_int(const char *value, long long min, long long max, long long *out);
-static int check_header(header_t *h, vfp_volume_t *vol, char *err, size_t errlen);
-static int read_voxels(header_t *h, vfp_volume_t *vol, char *err, size_t errlen);
+static vfp_status_t check_header(header_t *h, vfp_volume_t *vol, char *err, size_t errlen);
+static vfp_status_t read_voxels(header_t *h, vfp_volume_t *vol, char *err, size_t errlen);
 static field_id_t field_lookup(const char *name, int *known);
 static char *trim(char *s);
 
@@ -120,14 +129,14 @@ static const struct {
  *   GLOBAL FUNCTIONS
  **********************/
 
-int vfpi_load_nrrd(vfp_volume_t *vol, const char *path, char *err, size_t errlen)
+vfp_status_t vfpi_load_nrrd(vfp_volume_t *vol, const char *path, char *err, size_t errlen)
 {
     header_t h;
     memset(&h, 0, sizeof h);
     h.path = path;
     char *line = malloc(MAX_LINE + 1);
     FILE *file = fopen(path, "rb");
-    int rc;
+    vfp_status_t rc;
     if (!line)
         rc = vfpi_fail(err, errlen, path, 0, "out of memory");
     else if (!file)
@@ -137,9 +146,9 @@ int vfpi_load_nrrd(vfp_volume_t *vol, const char *path, char *err, size_t errlen
     if (file)
         fclose(file);
     free(line);
-    if (rc == 0)
+    if (rc == VFP_OK)
         rc = check_header(&h, vol, err, errlen);
-    if (rc == 0)
+    if (rc == VFP_OK)
         rc = read_voxels(&h, vol, err, errlen);
     free(h.data_file);
     return rc;
@@ -150,40 +159,40 @@ int vfpi_load_nrrd(vfp_volume_t *vol, const char *path, char *err, size_t errlen
  **********************/
 
 /* The magic line, then fields until a blank line (attached data follows) or the end of the file (detached). */
-static int read_header(header_t *h, FILE *file, char *line, char *err, size_t errlen)
+static vfp_status_t read_header(header_t *h, FILE *file, char *line, char *err, size_t errlen)
 {
     h->line = 1;
-    int r = read_line(file, line, MAX_LINE + 1);
-    if (r <= 0 || !line[0])
+    line_result_t r = read_line(file, line, MAX_LINE + 1);
+    if (r != LINE_READ || !line[0])
         return vfpi_fail(err, errlen, h->path, 1, "bad magic: not a text line (expected NRRD0001..NRRD0005)");
     if (strlen(line) != 8 || strncmp(line, "NRRD000", 7) != 0 || line[7] < '1' || line[7] > '5')
         return vfpi_fail(err, errlen, h->path, 1, "bad magic '%.*s' (expected NRRD0001..NRRD0005)", SHOWN, line);
     for (;;) {
         h->line++;
         r = read_line(file, line, MAX_LINE + 1);
-        if (r == 0)
-            return 0;
-        if (r == -1)
+        if (r == LINE_END)
+            return VFP_OK;
+        if (r == LINE_TOO_LONG)
             return vfpi_fail(err, errlen, h->path, h->line, "line longer than %d bytes (is the blank line "
                              "between header and data missing?)", MAX_LINE);
-        if (r == -2)
+        if (r == LINE_BINARY)
             return vfpi_fail(err, errlen, h->path, h->line, "binary data in the header (is the blank line "
                              "between header and data missing?)");
         if (line[0] == 0) {
             off_t here = ftello(file);
             h->attached = 1;
             h->data_offset = here > 0 ? (uint64_t)here : 0;
-            return 0;
+            return VFP_OK;
         }
         if (line[0] == '#')
             continue;
         if (parse_line(h, line, err, errlen))
-            return 2;
+            return VFP_ERR;
     }
 }
 
-/* One line without its "\n" or "\r\n". Returns 1, 0 at the end of the file, -1 too long, -2 a NUL byte. */
-static int read_line(FILE *file, char *buf, size_t cap)
+/* One line without its "\n" or "\r\n". */
+static line_result_t read_line(FILE *file, char *buf, size_t cap)
 {
     size_t n = 0;
     int c, any = 0, binary = 0;
@@ -195,25 +204,25 @@ static int read_line(FILE *file, char *buf, size_t cap)
         if (c == 0)
             binary = 1;
         if (n + 1 >= cap)
-            return -1;
+            return LINE_TOO_LONG;
         buf[n++] = (char)c;
     }
     if (n && buf[n - 1] == '\r')
         n--;
     buf[n] = 0;
     if (binary)
-        return -2;
-    return any ? 1 : 0;
+        return LINE_BINARY;
+    return any ? LINE_READ : LINE_END;
 }
 
 /* "field: value", or "key:=value" (ignored). */
-static int parse_line(header_t *h, char *line, char *err, size_t errlen)
+static vfp_status_t parse_line(header_t *h, char *line, char *err, size_t errlen)
 {
     char *colon = strchr(line, ':');
     if (!colon)
         return vfpi_fail(err, errlen, h->path, h->line, "expected 'field: value', found '%.*s'", SHOWN, line);
     if (colon[1] == '=')
-        return 0;
+        return VFP_OK;
     *colon = 0;
     char *name = trim(line), *value = trim(colon + 1);
     int known;
@@ -221,7 +230,7 @@ static int parse_line(header_t *h, char *line, char *err, size_t errlen)
     if (!known)
         return vfpi_fail(err, errlen, h->path, h->line, "unknown field '%.*s'", SHOWN, name);
     if (id == F_IGNORED)
-        return 0;
+        return VFP_OK;
     if (h->seen[id])
         return vfpi_fail(err, errlen, h->path, h->line, "duplicate field '%s' (first on line %u)", name,
                          h->seen[id]);
@@ -229,7 +238,7 @@ static int parse_line(header_t *h, char *line, char *err, size_t errlen)
     return parse_field(h, id, name, value, err, errlen);
 }
 
-static int parse_field(header_t *h, field_id_t id, const char *name, char *value, char *err, size_t errlen)
+static vfp_status_t parse_field(header_t *h, field_id_t id, const char *name, char *value, char *err, size_t errlen)
 {
     long long v;
     switch (id) {
@@ -241,7 +250,7 @@ static int parse_field(header_t *h, field_id_t id, const char *name, char *value
         if (v != 3)
             return vfpi_fail(err, errlen, h->path, h->line, "dimension %lld is not supported (expected 3: a "
                              "scalar 3D volume)", v);
-        return 0;
+        return VFP_OK;
     case F_SIZES:
         return parse_sizes(h, value, err, errlen);
     case F_SPACINGS:
@@ -251,16 +260,16 @@ static int parse_field(header_t *h, field_id_t id, const char *name, char *value
     case F_ENDIAN:
         if (strcasecmp(value, "little") == 0 || strcasecmp(value, "big") == 0) {
             h->big_endian = strcasecmp(value, "big") == 0;
-            return 0;
+            return VFP_OK;
         }
         return vfpi_fail(err, errlen, h->path, h->line, "unknown endian '%.*s' (expected little or big)", SHOWN,
                          value);
     case F_ENCODING:
         if (strcasecmp(value, "raw") == 0)
-            return 0;
+            return VFP_OK;
         if (strcasecmp(value, "gzip") == 0 || strcasecmp(value, "gz") == 0) {
             h->gzip = 1;
-            return 0;
+            return VFP_OK;
         }
         {
             static const char *const known[] = {"txt", "text", "ascii", "hex", "bz2", "bzip2", "zrl"};
@@ -276,13 +285,13 @@ static int parse_field(header_t *h, field_id_t id, const char *name, char *value
             return vfpi_fail(err, errlen, h->path, h->line, "bad line skip '%.*s' (expected a whole number >= 0)",
                              SHOWN, value);
         h->line_skip = (uint32_t)v;
-        return 0;
+        return VFP_OK;
     case F_BYTE_SKIP:
         if (!parse_int(value, -1, INT64_MAX, &v))
             return vfpi_fail(err, errlen, h->path, h->line, "bad byte skip '%.*s' (expected a whole number >= 0, "
                              "or -1 for data at the end of the file)", SHOWN, value);
         h->byte_skip = v;
-        return 0;
+        return VFP_OK;
     case F_DATA_FILE:
         /* One file only: the multi-file forms ("LIST", or a printf pattern with min max step) are not. */
         if (!value[0])
@@ -296,13 +305,13 @@ static int parse_field(header_t *h, field_id_t id, const char *name, char *value
         h->data_file = strdup(value);
         if (!h->data_file)
             return vfpi_fail(err, errlen, h->path, h->line, "out of memory");
-        return 0;
+        return VFP_OK;
     default:
-        return 0;
+        return VFP_OK;
     }
 }
 
-static int parse_type(header_t *h, const char *value, char *err, size_t errlen)
+static vfp_status_t parse_type(header_t *h, const char *value, char *err, size_t errlen)
 {
     /* Compare with single spaces and in lower case: "unsigned  Char" is "unsigned char". */
     char norm[64];
@@ -324,7 +333,7 @@ static int parse_type(header_t *h, const char *value, char *err, size_t errlen)
         if (types[i].type < 0)
             return vfpi_fail(err, errlen, h->path, h->line, "unsupported type '%s' (" TYPES_EXPECTED ")", value);
         h->type = (vf_voxel_t)types[i].type;
-        return 0;
+        return VFP_OK;
     }
     if (strcmp(norm, "char") == 0)
         return vfpi_fail(err, errlen, h->path, h->line, "type 'char' is ambiguous in NRRD (expected 'signed char' "
@@ -332,7 +341,7 @@ static int parse_type(header_t *h, const char *value, char *err, size_t errlen)
     return vfpi_fail(err, errlen, h->path, h->line, "unknown type '%.*s' (" TYPES_EXPECTED ")", SHOWN, value);
 }
 
-static int parse_sizes(header_t *h, const char *value, char *err, size_t errlen)
+static vfp_status_t parse_sizes(header_t *h, const char *value, char *err, size_t errlen)
 {
     uint64_t d[3];
     int n = 0;
@@ -354,14 +363,15 @@ static int parse_sizes(header_t *h, const char *value, char *err, size_t errlen)
         return vfpi_fail(err, errlen, h->path, h->line, "sizes has %d value%s (expected 3, one per axis)", n,
                          n == 1 ? "" : "s");
     if (vfpi_check_dims(d, h->path, h->line, err, errlen))
-        return 2;
+        return VFP_ERR;
     for (int a = 0; a < 3; a++)
         h->sizes[a] = (uint32_t)d[a];
-    return 0;
+    return VFP_OK;
 }
 
 /* Three numbers (strtod's spellings, so "nan" parses and is then refused by the spacing check). */
-static int parse_doubles(header_t *h, const char *name, const char *value, double out[3], char *err, size_t errlen)
+static vfp_status_t parse_doubles(header_t *h, const char *name, const char *value, double out[3], char *err,
+                                  size_t errlen)
 {
     int n = 0;
     const char *p = value;
@@ -380,11 +390,11 @@ static int parse_doubles(header_t *h, const char *name, const char *value, doubl
     if (n != 3)
         return vfpi_fail(err, errlen, h->path, h->line, "%s has %d value%s (expected 3, one per axis)", name, n,
                          n == 1 ? "" : "s");
-    return 0;
+    return VFP_OK;
 }
 
 /* "(x,y,z) (x,y,z) (x,y,z)", any vector may be "none"; a spacing is the length of its axis's vector. */
-static int parse_directions(header_t *h, const char *value, char *err, size_t errlen)
+static vfp_status_t parse_directions(header_t *h, const char *value, char *err, size_t errlen)
 {
     int n = 0;
     const char *p = value;
@@ -425,7 +435,7 @@ static int parse_directions(header_t *h, const char *value, char *err, size_t er
             p++;
     }
     if (n == 3)
-        return 0;
+        return VFP_OK;
 bad:
     return vfpi_fail(err, errlen, h->path, h->line, "bad space directions '%.*s' (expected three vectors such as "
                      "(1,0,0) (0,1,0) (0,0,1))", SHOWN, value);
@@ -443,7 +453,7 @@ static int parse_int(const char *value, long long min, long long max, long long 
 }
 
 /* Required fields, what depends on several fields, and the spacing that results. */
-static int check_header(header_t *h, vfp_volume_t *vol, char *err, size_t errlen)
+static vfp_status_t check_header(header_t *h, vfp_volume_t *vol, char *err, size_t errlen)
 {
     static const struct {
         field_id_t id;
@@ -473,13 +483,13 @@ static int check_header(header_t *h, vfp_volume_t *vol, char *err, size_t errlen
             line = h->seen[F_DIRECTIONS];
         }
         if (vfpi_check_spacing(s, a, h->path, line, err, errlen))
-            return 2;
+            return VFP_ERR;
         vol->spacing[a] = s;
     }
-    return 0;
+    return VFP_OK;
 }
 
-static int read_voxels(header_t *h, vfp_volume_t *vol, char *err, size_t errlen)
+static vfp_status_t read_voxels(header_t *h, vfp_volume_t *vol, char *err, size_t errlen)
 {
     vfpi_source_t src = {.path = h->path, .offset = h->data_offset, .line_skip = h->line_skip,
                          .byte_skip = h->byte_skip, .gzip = h->gzip};
@@ -502,13 +512,13 @@ static int read_voxels(header_t *h, vfp_volume_t *vol, char *err, size_t errlen)
         src.offset = 0;
     }
     size_t bytes;
-    int rc = vfpi_read_voxels(vol, h->sizes, h->type, &src, &bytes, err, errlen);
+    vfp_status_t rc = vfpi_read_voxels(vol, h->sizes, h->type, &src, &bytes, err, errlen);
     free(data_path);
     if (rc)
         return rc;
     if (vfpi_type_bytes(h->type) == 2)
         vfpi_to_native16(vol->data, bytes / 2, h->big_endian);
-    return 0;
+    return VFP_OK;
 }
 
 static field_id_t field_lookup(const char *name, int *known)

@@ -70,13 +70,13 @@ static const ellipsoid_t shepp_logan[] = {
  *   GLOBAL FUNCTIONS
  **********************/
 
-int vfpi_load_phantom(vfp_volume_t *vol, const char *spec, char *err, size_t errlen)
+vfp_status_t vfpi_load_phantom(vfp_volume_t *vol, const char *spec, char *err, size_t errlen)
 {
     const char *name = strchr(spec, ':') + 1; /* volume.c chose this reader by the "phantom:" prefix */
     const char *colon = strchr(name, ':');
     if (!colon)
-        return vfpi_fail(err, errlen, spec, 0, "expected phantom:NAME:N (NAME marschner-lobb, shepp-logan, sphere or cube; "
-                         "N the size of each side, %d..%d)", MIN_SIDE, MAX_SIDE);
+        return vfpi_fail(err, errlen, spec, 0, "expected phantom:NAME:N (NAME marschner-lobb, shepp-logan, sphere or "
+                         "cube; N the size of each side, %d..%d)", MIN_SIDE, MAX_SIDE);
     size_t len = (size_t)(colon - name);
     int which = -1;
     for (int i = 0; i < 4; i++)
@@ -98,7 +98,7 @@ int vfpi_load_phantom(vfp_volume_t *vol, const char *spec, char *err, size_t err
     uint32_t n = (uint32_t)side, dims[3] = {n, n, n};
     size_t bytes;
     if (vfpi_alloc_voxels(vol, dims, VF_VOXEL_U8, &bytes, spec, err, errlen))
-        return 2;
+        return VFP_ERR;
     for (int a = 0; a < 3; a++)
         vol->spacing[a] = 1.0;
     switch ((phantom_t)which) {
@@ -120,7 +120,7 @@ int vfpi_load_phantom(vfp_volume_t *vol, const char *spec, char *err, size_t err
         fill_cube(vol->data, n);
         break;
     }
-    return 0;
+    return VFP_OK;
 }
 
 /**********************

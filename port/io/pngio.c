@@ -34,21 +34,21 @@ void vfp_image_to_rgb(const vf_image_t *img, uint8_t *rgb)
     }
 }
 
-int vfp_png_write(const char *path, const vf_image_t *img, char *err, size_t errlen)
+vfp_status_t vfp_png_write(const char *path, const vf_image_t *img, char *err, size_t errlen)
 {
     uint8_t *rgb = malloc((size_t)img->width * img->height * 3);
     if (!rgb) {
         snprintf(err, errlen, "%s: out of memory for a %ux%u image", path, img->width, img->height);
-        return 2;
+        return VFP_ERR;
     }
     vfp_image_to_rgb(img, rgb);
-    int status = vfp_png_write_rgb(path, rgb, img->width, img->height, err, errlen);
+    vfp_status_t status = vfp_png_write_rgb(path, rgb, img->width, img->height, err, errlen);
     free(rgb);
     return status;
 }
 
-int vfp_png_write_rgb(const char *path, const uint8_t *rgb, uint32_t width, uint32_t height, char *err,
-                      size_t errlen)
+vfp_status_t vfp_png_write_rgb(const char *path, const uint8_t *rgb, uint32_t width, uint32_t height, char *err,
+                               size_t errlen)
 {
     png_image image;
     memset(&image, 0, sizeof image);
@@ -58,12 +58,13 @@ int vfp_png_write_rgb(const char *path, const uint8_t *rgb, uint32_t width, uint
     image.format = PNG_FORMAT_RGB;
     if (!png_image_write_to_file(&image, path, 0, rgb, (png_int_32)(width * 3), NULL)) {
         snprintf(err, errlen, "%s: cannot write PNG: %s", path, image.message[0] ? image.message : strerror(errno));
-        return 2;
+        return VFP_ERR;
     }
-    return 0;
+    return VFP_OK;
 }
 
-int vfp_png_read_rgb(const char *path, uint8_t **rgb, uint32_t *width, uint32_t *height, char *err, size_t errlen)
+vfp_status_t vfp_png_read_rgb(const char *path, uint8_t **rgb, uint32_t *width, uint32_t *height, char *err,
+                              size_t errlen)
 {
     png_image image;
     memset(&image, 0, sizeof image);
@@ -71,7 +72,7 @@ int vfp_png_read_rgb(const char *path, uint8_t **rgb, uint32_t *width, uint32_t 
     *rgb = NULL;
     if (!png_image_begin_read_from_file(&image, path)) {
         snprintf(err, errlen, "%s: cannot read PNG: %s", path, image.message);
-        return 2;
+        return VFP_ERR;
     }
     image.format = PNG_FORMAT_RGB;
     uint8_t *buf = malloc(PNG_IMAGE_SIZE(image));
@@ -79,10 +80,10 @@ int vfp_png_read_rgb(const char *path, uint8_t **rgb, uint32_t *width, uint32_t 
         snprintf(err, errlen, "%s: cannot read PNG: %s", path, buf ? image.message : "out of memory");
         free(buf);
         png_image_free(&image);
-        return 2;
+        return VFP_ERR;
     }
     *rgb = buf;
     *width = image.width;
     *height = image.height;
-    return 0;
+    return VFP_OK;
 }

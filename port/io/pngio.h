@@ -5,17 +5,19 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "status.h"
 #include "volfix.h"
 
-/* Write an image in any core format as an 8-bit RGB PNG. Returns 0, or 2 with a one-line message in err. */
-int vfp_png_write(const char *path, const vf_image_t *image, char *err, size_t errlen);
+/* Write an image in any core format as an 8-bit RGB PNG. Returns VFP_OK, or VFP_ERR with a one-line message in err. */
+vfp_status_t vfp_png_write(const char *path, const vf_image_t *image, char *err, size_t errlen);
 
 /* Write 8-bit RGB pixels (width * height * 3, rows packed). */
-int vfp_png_write_rgb(const char *path, const uint8_t *rgb, uint32_t width, uint32_t height, char *err,
-                      size_t errlen);
+vfp_status_t vfp_png_write_rgb(const char *path, const uint8_t *rgb, uint32_t width, uint32_t height, char *err,
+                               size_t errlen);
 
-/* Read a PNG as 8-bit RGB (malloc'd, rows packed; free() it). Returns 0, or 2 with err. */
-int vfp_png_read_rgb(const char *path, uint8_t **rgb, uint32_t *width, uint32_t *height, char *err, size_t errlen);
+/* Read a PNG as 8-bit RGB (malloc'd, rows packed; free() it). Returns VFP_OK, or VFP_ERR with err. */
+vfp_status_t vfp_png_read_rgb(const char *path, uint8_t **rgb, uint32_t *width, uint32_t *height, char *err,
+                              size_t errlen);
 
 /* Expand any core format to 8-bit RGB (RGB565 channels scaled to 0..255 with rounding). */
 void vfp_image_to_rgb(const vf_image_t *image, uint8_t *rgb);

@@ -21,7 +21,7 @@ static const char *type_name(vf_voxel_t type);
  *   GLOBAL FUNCTIONS
  **********************/
 
-int vfpi_load_raw(vfp_volume_t *vol, const char *path, const vfp_load_opts_t *opts, char *err, size_t errlen)
+vfp_status_t vfpi_load_raw(vfp_volume_t *vol, const char *path, const vfp_load_opts_t *opts, char *err, size_t errlen)
 {
     if (!opts || (!opts->have_dims && !opts->have_type))
         return vfpi_fail(err, errlen, path, 0, NEEDS " (or a file format this program recognises: NRRD, NIfTI-1, "
@@ -32,7 +32,7 @@ int vfpi_load_raw(vfp_volume_t *vol, const char *path, const vfp_load_opts_t *op
     char name[VFP_ERR_LEN];
     snprintf(name, sizeof name, "%s: --dims", path);
     if (vfpi_check_dims(d, name, 0, err, errlen))
-        return 2;
+        return VFP_ERR;
     if (opts->type != VF_VOXEL_U8 && opts->type != VF_VOXEL_I8 && opts->type != VF_VOXEL_U16 &&
         opts->type != VF_VOXEL_I16)
         return vfpi_fail(err, errlen, path, 0, "bad --type %d (expected uint8, int8, uint16 or int16)",
@@ -47,10 +47,10 @@ int vfpi_load_raw(vfp_volume_t *vol, const char *path, const vfp_load_opts_t *op
     vfpi_source_t src = {.path = path, .note = note, .gzip = vfpi_has_suffix(path, ".gz")};
     size_t bytes;
     if (vfpi_read_voxels(vol, opts->dims, opts->type, &src, &bytes, err, errlen))
-        return 2;
+        return VFP_ERR;
     if (vfpi_type_bytes(opts->type) == 2)
         vfpi_to_native16(vol->data, bytes / 2, opts->big_endian);
-    return 0;
+    return VFP_OK;
 }
 
 /**********************

@@ -10,7 +10,7 @@
 /* Mapped scalars (0..255 is the window) are kept within this far outside it: far enough that no output level
  * changes (an edge value interpolated across 1e12 moves by less than 1e-10), near enough that a difference of two
  * stays finite. A scalar of -1e308 in the file, times 255, is -inf, and the edge value between -inf and a point in
- * the window was inf/inf, NaN, converted to uint16_t (undefined; found by tests/fuzz). */
+ * the window would be inf/inf, NaN, converted to uint16_t (undefined behaviour; tests/fuzz keeps such a file). */
 #define FAR_SCALAR 1e12
 
 typedef struct preset {
@@ -50,7 +50,7 @@ const char *const vfp_tf_preset_names[] = {"ramp", "sharp", "ct-bone", "ct-skin-
 static double eval(const vfp_tf_point_t *p, int count, double x, int channel);
 static double channel(const vfp_tf_point_t *p, int c);
 
-int vfp_tf_preset(vfp_tf_t *tf, const char *name, char *err, size_t errlen)
+vfp_status_t vfp_tf_preset(vfp_tf_t *tf, const char *name, char *err, size_t errlen)
 {
     for (size_t i = 0; i < PRESET_COUNT; i++)
         if (strcmp(presets[i].name, name) == 0) {
@@ -58,10 +58,10 @@ int vfp_tf_preset(vfp_tf_t *tf, const char *name, char *err, size_t errlen)
             snprintf(tf->name, sizeof tf->name, "%s", name);
             tf->count = presets[i].count;
             memcpy(tf->points, presets[i].points, sizeof(vfp_tf_point_t) * (size_t)presets[i].count);
-            return 0;
+            return VFP_OK;
         }
     snprintf(err, errlen, "unknown preset '%s' (expected ramp, sharp, ct-bone, ct-skin-bone or mr-brain)", name);
-    return 2;
+    return VFP_ERR;
 }
 
 const char *vfp_tf_preset_about(const char *name)
@@ -72,26 +72,27 @@ const char *vfp_tf_preset_about(const char *name)
     return NULL;
 }
 
-int vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
+vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
 {
     memset(tf, 0, sizeof *tf);
     FILE *f = fopen(path, "r");
     if (!f) {
         snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-        return 2;
+        return VFP_ERR;
     }
     const char *base = strrchr(path, '/');
     snprintf(tf->name, sizeof tf->name, "%s", base ? base + 1 : path);
     char *line = NULL;
     size_t cap = 0;
     ssize_t len;
-    int lineno = 0, status = 0;
-    /* Whole lines however long (fgets into a fixed buffer read the rest of a long comment as a line of its own). */
-    while (status == 0 && (len = getline(&line, &cap, f)) >= 0) {
+    int lineno = 0;
+    vfp_status_t status = VFP_OK;
+    /* Whole lines however long: a fixed buffer would read the rest of a long comment as a line of its own. */
+    while (status == VFP_OK && (len = getline(&line, &cap, f)) >= 0) {
         lineno++;
         if ((size_t)len != strlen(line)) {
             snprintf(err, errlen, "%s:%d: expected text, found a NUL byte", path, lineno);
-            status = 2;
+            status = VFP_ERR;
             break;
         }
         char *hash = strchr(line, '#');
@@ -108,7 +109,7 @@ int vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
                 tf->data_units = 1;
             } else {
                 snprintf(err, errlen, "%s:%d: expected 'units normalized' or 'units data'", path, lineno);
-                status = 2;
+                status = VFP_ERR;
             }
             continue;
         }
@@ -117,33 +118,33 @@ int vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
         int got = sscanf(line, "%lf %lf %lf %lf %lf %1s", &p.s, &p.r, &p.g, &p.b, &p.a, extra);
         if (got != 5) {
             snprintf(err, errlen, "%s:%d: expected a control point 'scalar r g b a' (five numbers)", path, lineno);
-            status = 2;
+            status = VFP_ERR;
         } else if (!isfinite(p.s)) {
             snprintf(err, errlen, "%s:%d: the scalar is not a finite number", path, lineno);
-            status = 2;
+            status = VFP_ERR;
         } else if (!(p.r >= 0 && p.r <= 1 && p.g >= 0 && p.g <= 1 && p.b >= 0 && p.b <= 1 && p.a >= 0 && p.a <= 1)) {
             snprintf(err, errlen, "%s:%d: colour and opacity must be within [0, 1]", path, lineno);
-            status = 2;
+            status = VFP_ERR;
         } else if (tf->count > 0 && p.s < tf->points[tf->count - 1].s) {
             snprintf(err, errlen, "%s:%d: scalar %g is below the previous point's %g (scalars must not decrease)",
                      path, lineno, p.s, tf->points[tf->count - 1].s);
-            status = 2;
+            status = VFP_ERR;
         } else if (tf->count >= VF_MAX_TF_POINTS - 2) {
             snprintf(err, errlen, "%s:%d: more than %d control points", path, lineno, VF_MAX_TF_POINTS - 2);
-            status = 2;
+            status = VFP_ERR;
         } else {
             tf->points[tf->count++] = p;
         }
     }
-    if (status == 0 && ferror(f)) {
+    if (status == VFP_OK && ferror(f)) {
         snprintf(err, errlen, "%s: read error: %s", path, strerror(errno));
-        status = 2;
+        status = VFP_ERR;
     }
     free(line);
     fclose(f);
-    if (status == 0 && tf->count == 0) {
+    if (status == VFP_OK && tf->count == 0) {
         snprintf(err, errlen, "%s: no control points (expected lines 'scalar r g b a')", path);
-        status = 2;
+        status = VFP_ERR;
     }
     return status;
 }

@@ -35,11 +35,11 @@ typedef struct vfp_tf {
     vfp_tf_point_t points[VF_MAX_TF_POINTS];
 } vfp_tf_t;
 
-/* Read a transfer-function file. Returns 0, or 2 with a one-line "FILE:LINE: ..." message in err. */
-int vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen);
+/* Read a transfer-function file. Returns VFP_OK, or VFP_ERR with a one-line "FILE:LINE: ..." message in err. */
+vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen);
 
-/* A built-in preset by name. Returns 0, or 2 with err listing the names. */
-int vfp_tf_preset(vfp_tf_t *tf, const char *name, char *err, size_t errlen);
+/* A built-in preset by name. Returns VFP_OK, or VFP_ERR with err listing the names. */
+vfp_status_t vfp_tf_preset(vfp_tf_t *tf, const char *name, char *err, size_t errlen);
 
 /* The preset names, NULL-terminated, and a one-line description of each. */
 extern const char *const vfp_tf_preset_names[];

@@ -28,8 +28,8 @@
 /**********************
  *  STATIC PROTOTYPES
  **********************/
-static int load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err, size_t errlen);
-static int finish(vfp_volume_t *vol, const vfp_load_opts_t *opts, char *err, size_t errlen);
+static vfp_status_t load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err, size_t errlen);
+static vfp_status_t finish(vfp_volume_t *vol, const vfp_load_opts_t *opts, char *err, size_t errlen);
 static void raw_range(vfp_volume_t *vol);
 static int32_t raw_at(const vfp_volume_t *vol, size_t i);
 static vf_window_t percentile_window(const vfp_volume_t *vol);
@@ -40,7 +40,7 @@ static int parse_number(const char **p, double *value);
  *   GLOBAL FUNCTIONS
  **********************/
 
-int vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err, size_t errlen)
+vfp_status_t vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err, size_t errlen)
 {
     if (err && errlen)
         err[0] = 0;
@@ -53,16 +53,16 @@ int vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *
         return vfpi_fail(err, errlen, "(no file)", 0, "no volume file or phantom spec given");
     snprintf(vol->name, sizeof vol->name, "%s", spec);
 
-    int rc = load(vol, spec, opts, err, errlen);
-    if (rc == 0 && opts && opts->downsample > 1)
+    vfp_status_t rc = load(vol, spec, opts, err, errlen);
+    if (rc == VFP_OK && opts && opts->downsample > 1)
         rc = vfpi_downsample(vol, opts->downsample, err, errlen);
-    if (rc == 0)
+    if (rc == VFP_OK)
         rc = finish(vol, opts, err, errlen);
     if (rc) {
         vfp_volume_free(vol);
-        return 2;
+        return VFP_ERR;
     }
-    return 0;
+    return VFP_OK;
 }
 
 void vfp_volume_free(vfp_volume_t *vol)
@@ -90,7 +90,7 @@ vf_window_t vfp_default_window(const vfp_volume_t *vol)
     }
 }
 
-int vfp_parse_window(const vfp_volume_t *vol, const char *text, vf_window_t *window, char *err, size_t errlen)
+vfp_status_t vfp_parse_window(const vfp_volume_t *vol, const char *text, vf_window_t *window, char *err, size_t errlen)
 {
     char name[SHOWN_TEXT + 32];
     option_name(name, sizeof name, "--window", text);
@@ -114,10 +114,10 @@ int vfp_parse_window(const vfp_volume_t *vol, const char *text, vf_window_t *win
                          " expected a wider window", raw_lo, slope, inter);
     window->lo = (int32_t)raw_lo;
     window->hi = (int32_t)raw_hi;
-    return 0;
+    return VFP_OK;
 }
 
-int vfp_parse_dims(const char *text, uint32_t dims[3], char *err, size_t errlen)
+vfp_status_t vfp_parse_dims(const char *text, uint32_t dims[3], char *err, size_t errlen)
 {
     char name[SHOWN_TEXT + 32];
     option_name(name, sizeof name, "--dims", text);
@@ -145,13 +145,13 @@ int vfp_parse_dims(const char *text, uint32_t dims[3], char *err, size_t errlen)
     if (*p)
         return vfpi_fail(err, errlen, name, 0, "unexpected '%.16s' after X,Y,Z", p);
     if (vfpi_check_dims(d, name, 0, err, errlen))
-        return 2;
+        return VFP_ERR;
     for (int a = 0; a < 3; a++)
         dims[a] = (uint32_t)d[a];
-    return 0;
+    return VFP_OK;
 }
 
-int vfp_parse_type(const char *text, vf_voxel_t *type, char *err, size_t errlen)
+vfp_status_t vfp_parse_type(const char *text, vf_voxel_t *type, char *err, size_t errlen)
 {
     static const struct {
         const char *name;
@@ -160,7 +160,7 @@ int vfp_parse_type(const char *text, vf_voxel_t *type, char *err, size_t errlen)
     for (size_t i = 0; text && i < sizeof types / sizeof types[0]; i++) {
         if (strcasecmp(text, types[i].name) == 0) {
             *type = types[i].type;
-            return 0;
+            return VFP_OK;
         }
     }
     char name[SHOWN_TEXT + 32];
@@ -168,12 +168,30 @@ int vfp_parse_type(const char *text, vf_voxel_t *type, char *err, size_t errlen)
                      "unknown type (expected uint8, int8, uint16 or int16)");
 }
 
+vfp_status_t vfp_volume_downsampled(vfp_volume_t *dst, const vfp_volume_t *src, int factor, char *err, size_t errlen)
+{
+    memset(dst, 0, sizeof *dst);
+    size_t bytes = (size_t)src->core.dims[0] * src->core.dims[1] * src->core.dims[2] * vfpi_type_bytes(src->core.type);
+    *dst = *src;
+    dst->data = malloc(bytes);
+    if (!dst->data) {
+        memset(dst, 0, sizeof *dst);
+        return vfpi_fail(err, errlen, src->name, 0, "out of memory for a downsampled copy (%zu bytes)", bytes);
+    }
+    memcpy(dst->data, src->data, bytes);
+    if (vfpi_downsample(dst, factor, err, errlen) || finish(dst, NULL, err, errlen)) {
+        vfp_volume_free(dst);
+        return VFP_ERR;
+    }
+    return VFP_OK;
+}
+
 /**********************
  *   STATIC FUNCTIONS
  **********************/
 
 /* Chooses the reader: by content first (magic numbers), then by extension; raw is what is left. */
-static int load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err, size_t errlen)
+static vfp_status_t load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err, size_t errlen)
 {
     if (strncmp(spec, PHANTOM_PREFIX, strlen(PHANTOM_PREFIX)) == 0) {
         snprintf(vol->format, sizeof vol->format, "phantom");
@@ -187,7 +205,7 @@ static int load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts
     unsigned char head[VFPI_HEAD_BYTES];
     size_t n;
     if (vfpi_read_head(spec, 0, head, sizeof head, &n, err, errlen))
-        return 2;
+        return VFP_ERR;
     if (n == 0)
         return vfpi_fail(err, errlen, spec, 0, "empty file (expected a volume: NRRD, NIfTI-1, VolPack .den or raw)");
 
@@ -201,7 +219,7 @@ static int load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts
         unsigned char inner[VFPI_HEAD_BYTES];
         size_t m;
         if (vfpi_read_head(spec, 1, inner, sizeof inner, &m, err, errlen))
-            return 2;
+            return VFP_ERR;
         nifti = vfpi_is_nifti(inner, m);
     } else if (!gzip) {
         nifti = nifti || vfpi_is_nifti(head, n);
@@ -219,32 +237,14 @@ static int load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts
 }
 
 /* What every reader's volume needs after reading: the spacing override, Q16.16 spacing, raw range, voxels. */
-int vfp_volume_downsampled(vfp_volume_t *dst, const vfp_volume_t *src, int factor, char *err, size_t errlen)
-{
-    memset(dst, 0, sizeof *dst);
-    size_t bytes = (size_t)src->core.dims[0] * src->core.dims[1] * src->core.dims[2] * vfpi_type_bytes(src->core.type);
-    *dst = *src;
-    dst->data = malloc(bytes);
-    if (!dst->data) {
-        memset(dst, 0, sizeof *dst);
-        return vfpi_fail(err, errlen, src->name, 0, "out of memory for a downsampled copy (%zu bytes)", bytes);
-    }
-    memcpy(dst->data, src->data, bytes);
-    if (vfpi_downsample(dst, factor, err, errlen) || finish(dst, NULL, err, errlen)) {
-        vfp_volume_free(dst);
-        return 2;
-    }
-    return 0;
-}
-
-static int finish(vfp_volume_t *vol, const vfp_load_opts_t *opts, char *err, size_t errlen)
+static vfp_status_t finish(vfp_volume_t *vol, const vfp_load_opts_t *opts, char *err, size_t errlen)
 {
     if (opts && opts->have_spacing) {
         char name[sizeof vol->name + 16];
         snprintf(name, sizeof name, "%s: --spacing", vol->name);
         for (int a = 0; a < 3; a++) {
             if (vfpi_check_spacing(opts->spacing[a], a, name, 0, err, errlen))
-                return 2;
+                return VFP_ERR;
             vol->spacing[a] = opts->spacing[a] * (opts->downsample > 1 ? opts->downsample : 1);
         }
     }
@@ -263,7 +263,7 @@ static int finish(vfp_volume_t *vol, const vfp_load_opts_t *opts, char *err, siz
         vol->core.spacing_q16[a] = (uint32_t)lround(vol->spacing[a] / smallest * 65536.0);
     vol->core.voxels = vol->data;
     raw_range(vol);
-    return 0;
+    return VFP_OK;
 }
 
 static int32_t raw_at(const vfp_volume_t *vol, size_t i)

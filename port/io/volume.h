@@ -14,6 +14,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "status.h"
 #include "volfix.h"
 
 #define VFP_ERR_LEN 512
@@ -42,23 +43,24 @@ typedef struct vfp_load_opts {
 
 /* Load by name: a file path (format from its contents and extension: .nhdr/.nrrd, .nii/.nii.gz, .den, else raw,
  * which needs dims and type), or a synthetic volume "phantom:NAME:N" with NAME marschner-lobb, shepp-logan or
- * sphere or cube and N the size of each side (2..1024). Returns 0, or 2 with `err` filled. */
-int vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err, size_t errlen);
+ * sphere or cube and N the size of each side (2..1024). Returns VFP_OK, or VFP_ERR with `err` filled. */
+vfp_status_t vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err,
+                             size_t errlen);
 void vfp_volume_free(vfp_volume_t *vol);
 
 /* A copy of src averaged over factor^3 blocks (factor 1..8), spacing times factor: what --downsample loads.
- * Returns 0, or 2 with err (dst then holds nothing to free). */
-int vfp_volume_downsampled(vfp_volume_t *dst, const vfp_volume_t *src, int factor, char *err, size_t errlen);
+ * Returns VFP_OK, or VFP_ERR with err (dst then holds nothing to free). */
+vfp_status_t vfp_volume_downsampled(vfp_volume_t *dst, const vfp_volume_t *src, int factor, char *err, size_t errlen);
 
 /* The default window: the full range 0..255 for 8-bit data, otherwise the 0.5 and 99.5 percentiles of the raw
  * values (never lo == hi). */
 vf_window_t vfp_default_window(const vfp_volume_t *vol);
 
-/* Parse "LO,HI" in data units (after slope/intercept) into a raw-value window. Returns 0, or 2 with err. */
-int vfp_parse_window(const vfp_volume_t *vol, const char *text, vf_window_t *window, char *err, size_t errlen);
+/* Parse "LO,HI" in data units (after slope/intercept) into a raw-value window. Returns VFP_OK, or VFP_ERR with err. */
+vfp_status_t vfp_parse_window(const vfp_volume_t *vol, const char *text, vf_window_t *window, char *err, size_t errlen);
 
-/* Parse "X,Y,Z" (positive integers) and "uint8|int8|uint16|int16". Return 0, or 2 with err. */
-int vfp_parse_dims(const char *text, uint32_t dims[3], char *err, size_t errlen);
-int vfp_parse_type(const char *text, vf_voxel_t *type, char *err, size_t errlen);
+/* Parse "X,Y,Z" (positive integers) and "uint8|int8|uint16|int16". Return VFP_OK, or VFP_ERR with err. */
+vfp_status_t vfp_parse_dims(const char *text, uint32_t dims[3], char *err, size_t errlen);
+vfp_status_t vfp_parse_type(const char *text, vf_voxel_t *type, char *err, size_t errlen);
 
 #endif /* VFP_VOLUME_H */

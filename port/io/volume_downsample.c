@@ -41,10 +41,10 @@ static int32_t block_mean(const vfp_volume_t *src, uint32_t x0, uint32_t y0, uin
     return (int32_t)(sum >= 0 ? (sum + n / 2) / n : -((-sum + n / 2) / n));
 }
 
-int vfpi_downsample(vfp_volume_t *vol, int factor, char *err, size_t errlen)
+vfp_status_t vfpi_downsample(vfp_volume_t *vol, int factor, char *err, size_t errlen)
 {
     if (factor == 1)
-        return 0;
+        return VFP_OK;
     if (factor < 1 || factor > VFPI_MAX_DOWNSAMPLE)
         return vfpi_fail(err, errlen, vol->name, 0, "downsample factor %d (expected 1 to %d)", factor,
                          VFPI_MAX_DOWNSAMPLE);
@@ -60,7 +60,7 @@ int vfpi_downsample(vfp_volume_t *vol, int factor, char *err, size_t errlen)
     small.data = NULL;
     size_t bytes;
     if (vfpi_alloc_voxels(&small, dims, vol->core.type, &bytes, vol->name, err, errlen))
-        return 2;
+        return VFP_ERR;
     for (uint32_t z = 0; z < dims[2]; z++)
         for (uint32_t y = 0; y < dims[1]; y++)
             for (uint32_t x = 0; x < dims[0]; x++) {
@@ -77,5 +77,5 @@ int vfpi_downsample(vfp_volume_t *vol, int factor, char *err, size_t errlen)
         small.spacing[a] = vol->spacing[a] * f;
     free(vol->data);
     *vol = small;
-    return 0;
+    return VFP_OK;
 }

@@ -2,7 +2,7 @@
  * volume_internal.h: what the volume readers share (error text, checks, byte order, reading voxel data exactly).
  *
  * Names: vfp_ is the port's public prefix (volume.h); vfpi_ marks functions shared by the port's volume files
- * and no one else. Every vfpi_ function that can fail returns 0 or 2 (the programs' exit status for a bad input)
+ * and no one else. Every vfpi_ function that can fail returns VFP_OK or VFP_ERR (status.h)
  * and fills err with one line that starts with the file name, as volume.h promises.
  */
 #ifndef VFP_VOLUME_INTERNAL_H
@@ -31,32 +31,32 @@ typedef struct vfpi_source {
     int gzip;          /* the data is gzip (or zlib) compressed; concatenated gzip members are one stream */
 } vfpi_source_t;
 
-/* Formats "name:line: message" (line 0: "name: message") into err; returns 2, so `return vfpi_fail(...)`. */
-int vfpi_fail(char *err, size_t errlen, const char *name, unsigned line, const char *fmt, ...)
+/* Formats "name:line: message" (line 0: "name: message") into err; returns VFP_ERR, so `return vfpi_fail(...)`. */
+vfp_status_t vfpi_fail(char *err, size_t errlen, const char *name, unsigned line, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 
 /* Reads up to cap bytes from the start of a file (decompressed when gzip) for recognising it. Errors of a
  * damaged gzip stream are not reported here (the reader that follows reports them); a file that cannot be
  * opened is. */
-int vfpi_read_head(const char *path, int gzip, unsigned char *buf, size_t cap, size_t *got, char *err,
-                   size_t errlen);
+vfp_status_t vfpi_read_head(const char *path, int gzip, unsigned char *buf, size_t cap, size_t *got, char *err,
+                            size_t errlen);
 
 /* Reads a file's voxels: sets vol->core.dims and type and mallocs vol->data for exactly dims x type bytes, which the
  * file must hold (after the skips): more or fewer is an error. Nothing is allocated before the data is known to be
  * there (uncompressed: the file's size; gzip: the buffer grows with the decompressed data), so a header that
  * claims a huge volume fails with "truncated: expected N bytes of voxel data, found M", not out of memory. *bytes
  * is the size read. On failure vol is untouched. */
-int vfpi_read_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, const vfpi_source_t *src,
-                     size_t *bytes, char *err, size_t errlen);
+vfp_status_t vfpi_read_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, const vfpi_source_t *src,
+                              size_t *bytes, char *err, size_t errlen);
 
 /* Checks: each size 2..VF_MAX_DIM; a spacing finite, > 0, <= VFPI_MAX_SPACING and not 0 in Q16.16. */
-int vfpi_check_dims(const uint64_t dims[3], const char *name, unsigned line, char *err, size_t errlen);
-int vfpi_check_spacing(double spacing, int axis, const char *name, unsigned line, char *err, size_t errlen);
+vfp_status_t vfpi_check_dims(const uint64_t dims[3], const char *name, unsigned line, char *err, size_t errlen);
+vfp_status_t vfpi_check_spacing(double spacing, int axis, const char *name, unsigned line, char *err, size_t errlen);
 
 /* Sets vol->core.dims and type and mallocs vol->data for them (exactly, products checked for overflow): for volumes
  * made in memory (phantoms, downsampled copies); a file's voxels come through vfpi_read_voxels. */
-int vfpi_alloc_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, size_t *bytes,
-                      const char *name, char *err, size_t errlen);
+vfp_status_t vfpi_alloc_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, size_t *bytes,
+                               const char *name, char *err, size_t errlen);
 
 /* 16-bit values stored with the given byte order become native. */
 void vfpi_to_native16(void *data, size_t count, int big_endian);
@@ -70,16 +70,16 @@ uint32_t vfpi_load32(const unsigned char *p, int big_endian);
 
 /* The readers. Each fills vol->data, core.dims, core.type, spacing, slope and inter (or fails with everything it
  * allocated freed); volume.c does the rest (spacing_q16, raw_min/max, voxels pointer). */
-int vfpi_load_nrrd(vfp_volume_t *vol, const char *path, char *err, size_t errlen);
-int vfpi_load_nifti(vfp_volume_t *vol, const char *path, int gzip, char *err, size_t errlen);
-int vfpi_load_den(vfp_volume_t *vol, const char *path, char *err, size_t errlen);
-int vfpi_load_raw(vfp_volume_t *vol, const char *path, const vfp_load_opts_t *opts, char *err, size_t errlen);
-int vfpi_load_phantom(vfp_volume_t *vol, const char *spec, char *err, size_t errlen);
+vfp_status_t vfpi_load_nrrd(vfp_volume_t *vol, const char *path, char *err, size_t errlen);
+vfp_status_t vfpi_load_nifti(vfp_volume_t *vol, const char *path, int gzip, char *err, size_t errlen);
+vfp_status_t vfpi_load_den(vfp_volume_t *vol, const char *path, char *err, size_t errlen);
+vfp_status_t vfpi_load_raw(vfp_volume_t *vol, const char *path, const vfp_load_opts_t *opts, char *err, size_t errlen);
+vfp_status_t vfpi_load_phantom(vfp_volume_t *vol, const char *spec, char *err, size_t errlen);
 
 /* Replace the volume by its box average over factor^3 blocks (1..VFPI_MAX_DOWNSAMPLE), spacing times factor
  * (volume_downsample.c). Before volume.c's finishing step, which derives spacing_q16 and the range. */
 #define VFPI_MAX_DOWNSAMPLE 8
-int vfpi_downsample(vfp_volume_t *vol, int factor, char *err, size_t errlen);
+vfp_status_t vfpi_downsample(vfp_volume_t *vol, int factor, char *err, size_t errlen);
 
 /* Recognisers for dispatch by content (head: the first bytes of the file, decompressed when gzip). */
 int vfpi_is_nifti(const unsigned char *head, size_t n);

@@ -41,28 +41,29 @@ typedef struct stream {
 /**********************
  *  STATIC PROTOTYPES
  **********************/
-static int stream_open(stream_t *s, const vfpi_source_t *src, char *err, size_t errlen);
+static vfp_status_t stream_open(stream_t *s, const vfpi_source_t *src, char *err, size_t errlen);
 static void stream_close(stream_t *s);
-static int stream_read(stream_t *s, const vfpi_source_t *src, unsigned char *out, size_t n, size_t *got, char *err,
-                       size_t errlen);
-static int stream_refill(stream_t *s, const vfpi_source_t *src, char *err, size_t errlen);
-static int stream_skip(stream_t *s, const vfpi_source_t *src, uint64_t n, uint64_t *skipped, char *err,
-                       size_t errlen);
-static int skip_lines(FILE *file, const vfpi_source_t *src, char *err, size_t errlen);
-static int read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, size_t bytes, void **out, char *err,
-                      size_t errlen);
-static int read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, void **out, char *err, size_t errlen);
-static int src_fail(char *err, size_t errlen, const vfpi_source_t *src, const char *fmt, ...)
+static vfp_status_t stream_read(stream_t *s, const vfpi_source_t *src, unsigned char *out, size_t n, size_t *got,
+                                char *err, size_t errlen);
+static vfp_status_t stream_refill(stream_t *s, const vfpi_source_t *src, char *err, size_t errlen);
+static vfp_status_t stream_skip(stream_t *s, const vfpi_source_t *src, uint64_t n, uint64_t *skipped, char *err,
+                                size_t errlen);
+static vfp_status_t skip_lines(FILE *file, const vfpi_source_t *src, char *err, size_t errlen);
+static vfp_status_t read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, size_t bytes, void **out,
+                               char *err, size_t errlen);
+static vfp_status_t read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, void **out, char *err,
+                              size_t errlen);
+static vfp_status_t src_fail(char *err, size_t errlen, const vfpi_source_t *src, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 
 /**********************
  *   GLOBAL FUNCTIONS
  **********************/
 
-int vfpi_fail(char *err, size_t errlen, const char *name, unsigned line, const char *fmt, ...)
+vfp_status_t vfpi_fail(char *err, size_t errlen, const char *name, unsigned line, const char *fmt, ...)
 {
     if (!err || errlen == 0)
-        return 2;
+        return VFP_ERR;
     int n = line ? snprintf(err, errlen, "%s:%u: ", name, line) : snprintf(err, errlen, "%s: ", name);
     if (n >= 0 && (size_t)n < errlen) {
         va_list ap;
@@ -71,26 +72,26 @@ int vfpi_fail(char *err, size_t errlen, const char *name, unsigned line, const c
         va_end(ap);
     }
     vfp_printable(err); /* a file name or a quoted header value could carry a newline or binary junk */
-    return 2;
+    return VFP_ERR;
 }
 
-int vfpi_read_head(const char *path, int gzip, unsigned char *buf, size_t cap, size_t *got, char *err,
-                   size_t errlen)
+vfp_status_t vfpi_read_head(const char *path, int gzip, unsigned char *buf, size_t cap, size_t *got, char *err,
+                            size_t errlen)
 {
     vfpi_source_t src = {.path = path, .gzip = gzip};
     stream_t s;
     *got = 0;
     if (stream_open(&s, &src, err, errlen))
-        return 2;
+        return VFP_ERR;
     char scratch[VFP_ERR_LEN];
     /* A damaged stream still yields the bytes before the damage; the reader that follows says what is wrong. */
     stream_read(&s, &src, buf, cap, got, scratch, sizeof scratch);
     stream_close(&s);
-    return 0;
+    return VFP_OK;
 }
 
-int vfpi_read_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, const vfpi_source_t *src,
-                     size_t *bytes, char *err, size_t errlen)
+vfp_status_t vfpi_read_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, const vfpi_source_t *src,
+                              size_t *bytes, char *err, size_t errlen)
 {
     /* dims are at most VF_MAX_DIM (2^12) each: the product fits 64 bits, but may not fit a 32-bit size_t. */
     uint64_t n = (uint64_t)dims[0] * dims[1] * dims[2] * vfpi_type_bytes(type);
@@ -98,13 +99,13 @@ int vfpi_read_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type,
         return src_fail(err, errlen, src, "volume of %llu bytes is too large for this machine", (unsigned long long)n);
     stream_t s;
     if (stream_open(&s, src, err, errlen))
-        return 2;
+        return VFP_ERR;
     void *data = NULL;
-    int rc;
+    vfp_status_t rc;
     if (src->offset && fseeko(s.file, (off_t)src->offset, SEEK_SET) != 0)
         rc = src_fail(err, errlen, src, "cannot seek to byte %llu: %s", (unsigned long long)src->offset,
                       strerror(errno));
-    else if ((rc = skip_lines(s.file, src, err, errlen)) != 0)
+    else if ((rc = skip_lines(s.file, src, err, errlen)) != VFP_OK)
         ;
     else if (src->gzip) {
         if (src->byte_skip < 0)
@@ -126,10 +127,10 @@ int vfpi_read_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type,
         vol->core.dims[a] = dims[a];
     vol->core.type = type;
     *bytes = (size_t)n;
-    return 0;
+    return VFP_OK;
 }
 
-int vfpi_check_dims(const uint64_t dims[3], const char *name, unsigned line, char *err, size_t errlen)
+vfp_status_t vfpi_check_dims(const uint64_t dims[3], const char *name, unsigned line, char *err, size_t errlen)
 {
     static const char axis_names[3] = {'x', 'y', 'z'};
     for (int a = 0; a < 3; a++) {
@@ -139,10 +140,10 @@ int vfpi_check_dims(const uint64_t dims[3], const char *name, unsigned line, cha
                          (unsigned long long)dims[a], axis_names[a], VF_MAX_DIM,
                          dims[a] == 1 ? "; a volume 1 voxel thick cannot be rendered" : "");
     }
-    return 0;
+    return VFP_OK;
 }
 
-int vfpi_check_spacing(double spacing, int axis, const char *name, unsigned line, char *err, size_t errlen)
+vfp_status_t vfpi_check_spacing(double spacing, int axis, const char *name, unsigned line, char *err, size_t errlen)
 {
     static const char axis_names[3] = {'x', 'y', 'z'};
     char c = axis_names[axis < 0 || axis > 2 ? 0 : axis];
@@ -154,11 +155,11 @@ int vfpi_check_spacing(double spacing, int axis, const char *name, unsigned line
                          "spacing %g along %c is too small (expected at least %g: spacings are kept in "
                          "Q16.16)",
                          spacing, c, 0.5 / 65536.0);
-    return 0;
+    return VFP_OK;
 }
 
-int vfpi_alloc_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, size_t *bytes,
-                      const char *name, char *err, size_t errlen)
+vfp_status_t vfpi_alloc_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type, size_t *bytes,
+                               const char *name, char *err, size_t errlen)
 {
     /* dims are at most VF_MAX_DIM (2^12) each: the product fits 64 bits, but may not fit a 32-bit size_t. */
     uint64_t n = (uint64_t)dims[0] * dims[1] * dims[2] * vfpi_type_bytes(type);
@@ -172,7 +173,7 @@ int vfpi_alloc_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxel_t type
         vol->core.dims[a] = dims[a];
     vol->core.type = type;
     *bytes = (size_t)n;
-    return 0;
+    return VFP_OK;
 }
 
 void vfpi_to_native16(void *data, size_t count, int big_endian)
@@ -219,7 +220,7 @@ uint32_t vfpi_load32(const unsigned char *p, int big_endian)
  **********************/
 
 /* "path: message (note)", the shape of every data error. */
-static int src_fail(char *err, size_t errlen, const vfpi_source_t *src, const char *fmt, ...)
+static vfp_status_t src_fail(char *err, size_t errlen, const vfpi_source_t *src, const char *fmt, ...)
 {
     char msg[VFP_ERR_LEN];
     va_list ap;
@@ -231,7 +232,7 @@ static int src_fail(char *err, size_t errlen, const vfpi_source_t *src, const ch
     return vfpi_fail(err, errlen, src->path, 0, "%s", msg);
 }
 
-static int stream_open(stream_t *s, const vfpi_source_t *src, char *err, size_t errlen)
+static vfp_status_t stream_open(stream_t *s, const vfpi_source_t *src, char *err, size_t errlen)
 {
     memset(s, 0, sizeof *s);
     s->gzip = src->gzip;
@@ -243,7 +244,7 @@ static int stream_open(stream_t *s, const vfpi_source_t *src, char *err, size_t 
         return vfpi_fail(err, errlen, src->path, 0, "cannot open: %s", why);
     }
     if (!s->gzip)
-        return 0;
+        return VFP_OK;
     s->in = malloc(IN_BYTES);
     /* 15 + 32: a window of 2^15 and automatic gzip or zlib header detection. */
     if (!s->in || inflateInit2(&s->z, 15 + 32) != Z_OK) {
@@ -251,7 +252,7 @@ static int stream_open(stream_t *s, const vfpi_source_t *src, char *err, size_t 
         return src_fail(err, errlen, src, "out of memory for gzip decompression");
     }
     s->z_ready = 1;
-    return 0;
+    return VFP_OK;
 }
 
 static void stream_close(stream_t *s)
@@ -264,8 +265,8 @@ static void stream_close(stream_t *s)
     memset(s, 0, sizeof *s);
 }
 
-/* Moves unread input to the front and reads more of the file after it. Returns 2 on a read error. */
-static int stream_refill(stream_t *s, const vfpi_source_t *src, char *err, size_t errlen)
+/* Moves unread input to the front and reads more of the file after it. Returns VFP_ERR on a read error. */
+static vfp_status_t stream_refill(stream_t *s, const vfpi_source_t *src, char *err, size_t errlen)
 {
     if (s->z.avail_in && s->z.next_in != s->in)
         memmove(s->in, s->z.next_in, s->z.avail_in);
@@ -274,26 +275,26 @@ static int stream_refill(stream_t *s, const vfpi_source_t *src, char *err, size_
     if (r == 0 && ferror(s->file))
         return src_fail(err, errlen, src, "read error: %s", strerror(errno));
     s->z.avail_in += (uInt)r;
-    return 0;
+    return VFP_OK;
 }
 
-/* Reads up to n bytes; *got < n only at the end of the data. Returns 2 on a read or gzip error. */
-static int stream_read(stream_t *s, const vfpi_source_t *src, unsigned char *out, size_t n, size_t *got, char *err,
-                       size_t errlen)
+/* Reads up to n bytes; *got < n only at the end of the data. Returns VFP_ERR on a read or gzip error. */
+static vfp_status_t stream_read(stream_t *s, const vfpi_source_t *src, unsigned char *out, size_t n, size_t *got,
+                                char *err, size_t errlen)
 {
     *got = 0;
     if (!s->gzip) {
         *got = fread(out, 1, n, s->file);
         if (*got < n && ferror(s->file))
             return src_fail(err, errlen, src, "read error: %s", strerror(errno));
-        return 0;
+        return VFP_OK;
     }
     while (*got < n && !s->ended) {
         if (s->member_ended) {
             /* Concatenated gzip members make one stream (as gzip -d reads them); anything else after the end
              * of the compressed data means the file is not what its header says. */
             if (s->z.avail_in < 2 && stream_refill(s, src, err, errlen))
-                return 2;
+                return VFP_ERR;
             if (s->z.avail_in == 0) {
                 s->ended = 1;
                 break;
@@ -305,7 +306,7 @@ static int stream_read(stream_t *s, const vfpi_source_t *src, unsigned char *out
         }
         if (s->z.avail_in == 0) {
             if (stream_refill(s, src, err, errlen))
-                return 2;
+                return VFP_ERR;
             if (s->z.avail_in == 0)
                 return src_fail(err, errlen, src, "gzip error: unexpected end of file (the compressed data is "
                                                   "truncated)");
@@ -324,18 +325,18 @@ static int stream_read(stream_t *s, const vfpi_source_t *src, unsigned char *out
             return src_fail(err, errlen, src, "gzip error: out of memory");
         /* Z_OK and Z_BUF_ERROR: more input or more room is needed, which the loop provides. */
     }
-    return 0;
+    return VFP_OK;
 }
 
 /* Reads and drops n bytes (or fewer at the end of the data: *skipped says how many). */
-static int stream_skip(stream_t *s, const vfpi_source_t *src, uint64_t n, uint64_t *skipped, char *err,
-                       size_t errlen)
+static vfp_status_t stream_skip(stream_t *s, const vfpi_source_t *src, uint64_t n, uint64_t *skipped, char *err,
+                                size_t errlen)
 {
     unsigned char *scratch = malloc(DISCARD_BYTES);
     if (!scratch)
         return src_fail(err, errlen, src, "out of memory");
     *skipped = 0;
-    int rc = 0;
+    vfp_status_t rc = VFP_OK;
     while (*skipped < n) {
         uint64_t want = n - *skipped;
         size_t got;
@@ -349,7 +350,7 @@ static int stream_skip(stream_t *s, const vfpi_source_t *src, uint64_t n, uint64
 }
 
 /* NRRD's line skip: lines of the file as stored, before any decompression. */
-static int skip_lines(FILE *file, const vfpi_source_t *src, char *err, size_t errlen)
+static vfp_status_t skip_lines(FILE *file, const vfpi_source_t *src, char *err, size_t errlen)
 {
     for (uint32_t line = 0; line < src->line_skip; line++) {
         int c;
@@ -359,13 +360,13 @@ static int skip_lines(FILE *file, const vfpi_source_t *src, char *err, size_t er
             return src_fail(err, errlen, src, "truncated: line skip %u passes the end of the file after %u lines",
                             src->line_skip, line);
     }
-    return 0;
+    return VFP_OK;
 }
 
 /* Checks that the file holds exactly `bytes` bytes of data (after the skips) before it allocates them: a header
  * that claims a huge volume costs nothing when the data is not there. */
-static int read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, size_t bytes, void **out, char *err,
-                      size_t errlen)
+static vfp_status_t read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, size_t bytes, void **out,
+                               char *err, size_t errlen)
 {
     off_t here = ftello(file);
     if (here < 0)
@@ -398,35 +399,35 @@ static int read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes,
         return src_fail(err, errlen, src, "out of memory for %zu bytes of voxels", bytes);
     size_t got = fread(dst, 1, bytes, file);
     if (got != bytes) {
-        int rc = src_fail(err, errlen, src, "read error after %zu of %zu bytes: %s", got, bytes,
-                          ferror(file) ? strerror(errno) : "the file shrank while it was read");
+        vfp_status_t rc = src_fail(err, errlen, src, "read error after %zu of %zu bytes: %s", got, bytes,
+                                   ferror(file) ? strerror(errno) : "the file shrank while it was read");
         free(dst);
         return rc;
     }
     *out = dst;
-    return 0;
+    return VFP_OK;
 }
 
 /* The decompressed size is known only by decompressing, so the buffer grows with the data (doubling, up to
  * `bytes`): a small file that claims a huge volume is found short after allocating about what it holds. */
-static int read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, void **out, char *err, size_t errlen)
+static vfp_status_t read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, void **out, char *err, size_t errlen)
 {
     uint64_t skipped;
     if (stream_skip(s, src, (uint64_t)src->byte_skip, &skipped, err, errlen))
-        return 2;
+        return VFP_ERR;
     if (skipped < (uint64_t)src->byte_skip)
         return src_fail(err, errlen, src, "truncated: the data should start at byte %lld after decompression, but "
                         "there are only %llu bytes", (long long)src->byte_skip, (unsigned long long)skipped);
     size_t cap = bytes < FIRST_BYTES ? bytes : FIRST_BYTES, got = 0;
     unsigned char *dst = malloc(cap);
-    int rc = 0;
+    vfp_status_t rc = VFP_OK;
     for (;;) {
         size_t more;
         if (!dst) {
             rc = src_fail(err, errlen, src, "out of memory for %zu bytes of voxels", cap);
             break;
         }
-        if ((rc = stream_read(s, src, dst + got, cap - got, &more, err, errlen)) != 0)
+        if ((rc = stream_read(s, src, dst + got, cap - got, &more, err, errlen)) != VFP_OK)
             break;
         got += more;
         if (got < cap || cap == bytes)
@@ -437,14 +438,14 @@ static int read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, void *
             free(dst);
         dst = grown;
     }
-    if (rc == 0 && got < bytes)
+    if (rc == VFP_OK && got < bytes)
         rc = src_fail(err, errlen, src, "truncated: expected %zu bytes of voxel data after decompression, found %zu",
                       bytes, got);
     /* Count the surplus so the message can say how much there is (a wrong header is the usual cause). */
     uint64_t extra = 0;
-    if (rc == 0)
+    if (rc == VFP_OK)
         rc = stream_skip(s, src, UINT64_MAX, &extra, err, errlen);
-    if (rc == 0 && extra)
+    if (rc == VFP_OK && extra)
         rc = src_fail(err, errlen, src, "expected %zu bytes of voxel data after decompression, found %llu%s", bytes,
                       (unsigned long long)(bytes + extra), src->note ? "" : " (more than the sizes and type say)");
     if (rc) {
@@ -452,5 +453,5 @@ static int read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, void *
         return rc;
     }
     *out = dst;
-    return 0;
+    return VFP_OK;
 }

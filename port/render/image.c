@@ -3,14 +3,14 @@
 
 #include <stdlib.h>
 
-int vfp_image_alloc(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
+vfp_status_t vfp_image_alloc(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
 {
     img->width = width;
     img->height = height;
     img->format = format;
     img->stride = width * vf_format_bytes(format);
     img->pixels = calloc(height, img->stride);
-    return img->pixels ? 0 : 2;
+    return img->pixels ? VFP_OK : VFP_ERR;
 }
 
 void vfp_image_free(vf_image_t *img)

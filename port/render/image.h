@@ -7,11 +7,12 @@
 
 #include <stdint.h>
 
+#include "status.h"
 #include "volfix.h"
 
-/* An image of this size and format in calloc'd memory, rows packed; 0, or 2 when out of memory (pixels NULL).
- * vfp_image_free gives it back and leaves pixels NULL (safe to call again). */
-int vfp_image_alloc(vf_image_t *image, uint32_t width, uint32_t height, vf_format_t format);
+/* An image of this size and format in calloc'd memory, rows packed: VFP_OK, or VFP_ERR when out of memory (pixels
+ * NULL; the caller words the message). vfp_image_free gives it back and leaves pixels NULL (safe to call again). */
+vfp_status_t vfp_image_alloc(vf_image_t *image, uint32_t width, uint32_t height, vf_format_t format);
 void vfp_image_free(vf_image_t *image);
 
 /* FNV-1a, 64 bits, over the pixel bytes row by row (width * bytes per pixel of each row, never the stride's

@@ -26,8 +26,8 @@ typedef struct worker {
     int index;
 } worker_t;
 
-static int create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t errlen);
-static int apply(vfp_render_t *r, int window_changed, char *err, size_t errlen);
+static vfp_status_t create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t errlen);
+static vfp_status_t apply(vfp_render_t *r, int window_changed, char *err, size_t errlen);
 static void *run_bands(void *arg);
 static vf_status_t spread(vfp_render_t *r, band_work_t *work);
 
@@ -38,42 +38,41 @@ double vfp_now_ms(void)
     return ts.tv_sec * 1e3 + ts.tv_nsec / 1e6;
 }
 
-int vfp_render_open(vfp_render_t *r, const vf_params_t *params, const vf_volume_t *volume, int threads, char *err,
-                    size_t errlen)
+vfp_status_t vfp_render_open(vfp_render_t *r, const vf_params_t *params, const vf_volume_t *volume, int threads,
+                             char *err, size_t errlen)
 {
     memset(r, 0, sizeof *r);
     r->params = *params;
     r->volume = volume;
     r->threads = threads < 1 ? 1 : threads > VFP_MAX_THREADS ? VFP_MAX_THREADS : threads;
-    /* Taller bands pay a slab's or slice's set-up fewer times a frame (one thread, engine at 512x512, ramp: 32 rows
-     * take 1.1% fewer instructions than 8 for point and 1.8% for preint1, callgrind over 2 frames of volfix-sim
-     * bench); shorter ones share the work out more evenly: about ten bands a thread for a 300-row intermediate
-     * image, never fewer than 8 rows. */
+    /* Taller bands pay a slab's or slice's set-up fewer times a frame, so one thread takes 32 rows at a time;
+     * shorter ones share the work out more evenly, so more threads take fewer: about ten bands a thread for a
+     * 300-row intermediate image, never fewer than 8 rows. */
     r->band_rows = 32 / (uint32_t)r->threads < 8 ? 8 : 32 / (uint32_t)r->threads;
     size_t fixed;
     vf_status_t s = vf_renderer_bytes(params, volume, &fixed);
     if (s != VF_OK) {
         snprintf(err, errlen, "cannot render this volume: %s", vf_status_text(s));
-        return 2;
+        return VFP_ERR;
     }
     /* The run lists come on top; a quarter of the fixed part is usually plenty, and set_tf grows it if not. */
     if (create_core(r, fixed + fixed / 4, err, errlen))
-        return 2;
-    return 0;
+        return VFP_ERR;
+    return VFP_OK;
 }
 
-int vfp_render_set_window(vfp_render_t *r, vf_window_t window, char *err, size_t errlen)
+vfp_status_t vfp_render_set_window(vfp_render_t *r, vf_window_t window, char *err, size_t errlen)
 {
     r->window = window;
     r->have_window = 1;
     return apply(r, 1, err, errlen);
 }
 
-int vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t count, char *err, size_t errlen)
+vfp_status_t vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t count, char *err, size_t errlen)
 {
     if (count > VF_MAX_TF_POINTS) {
         snprintf(err, errlen, "transfer function has %u points (at most %d)", count, VF_MAX_TF_POINTS);
-        return 2;
+        return VFP_ERR;
     }
     memcpy(r->tf_points, points, sizeof *points * count);
     r->tf.points = r->tf_points;
@@ -82,7 +81,7 @@ int vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t cou
     return apply(r, 0, err, errlen);
 }
 
-int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen)
+vfp_status_t vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen)
 {
     double t0 = vfp_now_ms();
     /* with threads, a table that went stale is built in a part a thread; on one, the bands (one after another)
@@ -97,7 +96,7 @@ int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *i
     }
     if (s != VF_OK) {
         snprintf(err, errlen, "cannot begin a frame: %s", vf_status_text(s));
-        return 2;
+        return VFP_ERR;
     }
     double t1 = vfp_now_ms();
     const vf_factor_t *f = vf_renderer_factor(r->core);
@@ -113,12 +112,12 @@ int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *i
     double t3 = vfp_now_ms();
     if (s != VF_OK) {
         snprintf(err, errlen, "cannot render a frame: %s", vf_status_text(s));
-        return 2;
+        return VFP_ERR;
     }
     r->ms_tables = t1 - t0;
     r->ms_composite = t2 - t1;
     r->ms_warp = t3 - t2;
-    return 0;
+    return VFP_OK;
 }
 
 void vfp_render_close(vfp_render_t *r)
@@ -129,21 +128,21 @@ void vfp_render_close(vfp_render_t *r)
     memset(r, 0, sizeof *r);
 }
 
-static int create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t errlen)
+static vfp_status_t create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t errlen)
 {
     free(r->arena_buf); /* the core lived in it: gone with it, so that a failure below leaves nothing dangling */
     r->core = NULL;
     r->arena_buf = malloc(arena_bytes);
     if (!r->arena_buf) {
         snprintf(err, errlen, "out of memory: the renderer needs %zu MB", arena_bytes >> 20);
-        return 2;
+        return VFP_ERR;
     }
     vf_arena_init(&r->arena, r->arena_buf, arena_bytes);
     vf_status_t s = vf_renderer_create(&r->core, &r->params, r->volume, &r->arena);
     r->core_fresh = 1; /* it has neither window nor transfer function yet */
     if (s != VF_OK) {
         snprintf(err, errlen, "cannot create the renderer: %s", vf_status_text(s));
-        return 2;
+        return VFP_ERR;
     }
     /* Scratch for the tallest band or a table part, per thread; the core sizes it for any view of this volume. */
     r->scratch_bytes = vf_renderer_band_scratch_bytes(r->core, r->band_rows);
@@ -154,16 +153,16 @@ static int create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t er
         r->scratch[t] = malloc(r->scratch_bytes);
         if (!r->scratch[t]) {
             snprintf(err, errlen, "out of memory for band scratch");
-            return 2;
+            return VFP_ERR;
         }
     }
-    return 0;
+    return VFP_OK;
 }
 
 /* Give the core what changed (the window, or the transfer function), growing the arena once if the run lists
  * need it; a new core gets both. Each core call re-encodes the runs, so a transfer-function change must not
- * set the window again: that would rebuild the slices and encode twice (the viewer's level knob felt it). */
-static int apply(vfp_render_t *r, int window_changed, char *err, size_t errlen)
+ * set the window again: that would rebuild the slices and encode twice, which a turning level knob would feel. */
+static vfp_status_t apply(vfp_render_t *r, int window_changed, char *err, size_t errlen)
 {
     double t0 = vfp_now_ms();
     for (int attempt = 0; attempt < 2; attempt++) {
@@ -175,18 +174,18 @@ static int apply(vfp_render_t *r, int window_changed, char *err, size_t errlen)
         if (s == VF_OK) {
             r->core_fresh = 0;
             r->ms_classify = vfp_now_ms() - t0;
-            return 0;
+            return VFP_OK;
         }
         if (s != VF_ERR_NOMEM || attempt == 1) {
             snprintf(err, errlen, "%s: %s", r->have_tf ? "cannot apply the transfer function" : "cannot set the window",
                      vf_status_text(s));
-            return 2;
+            return VFP_ERR;
         }
         size_t needed = vf_renderer_needed_bytes(r->core);
         if (create_core(r, needed + needed / 8, err, errlen))
-            return 2;
+            return VFP_ERR;
     }
-    return 2;
+    return VFP_ERR;
 }
 
 static void *run_bands(void *arg)

@@ -10,6 +10,7 @@
 #include <stddef.h>
 
 #include "image.h"
+#include "status.h"
 #include "volfix.h"
 
 #define VFP_MAX_THREADS 16
@@ -33,12 +34,13 @@ typedef struct vfp_render {
     double ms_classify;                      /* the last window or transfer-function change */
 } vfp_render_t;
 
-/* All return 0, or 2 with a one-line message in err. */
-int vfp_render_open(vfp_render_t *r, const vf_params_t *params, const vf_volume_t *volume, int threads, char *err,
-                    size_t errlen);
-int vfp_render_set_window(vfp_render_t *r, vf_window_t window, char *err, size_t errlen);
-int vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t count, char *err, size_t errlen);
-int vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen);
+/* All return VFP_OK, or VFP_ERR with a one-line message in err. */
+vfp_status_t vfp_render_open(vfp_render_t *r, const vf_params_t *params, const vf_volume_t *volume, int threads,
+                             char *err, size_t errlen);
+vfp_status_t vfp_render_set_window(vfp_render_t *r, vf_window_t window, char *err, size_t errlen);
+vfp_status_t vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uint32_t count, char *err, size_t errlen);
+vfp_status_t vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err,
+                              size_t errlen);
 void vfp_render_close(vfp_render_t *r);
 
 /* Milliseconds on the monotonic clock. */

@@ -175,8 +175,8 @@ static void display_lost(loop_t *L, const char *why)
     L->reopen_at = now_ns() + (uint64_t)REOPEN_INTERVAL_MS * 1000000u;
 }
 
-/* Draw the overlay on a copy of the clean picture and show it. Returns 0, or 2 after printing an error. */
-static int present(loop_t *L, int full, double ms)
+/* Draw the overlay on a copy of the clean picture and show it. Returns VFP_OK, or VFP_ERR after printing an error. */
+static vfp_status_t present(loop_t *L, int full, double ms)
 {
     viewer_t *v = L->v;
     memcpy(L->frame.pixels, L->clean.pixels, (size_t)L->clean.stride * L->clean.height);
@@ -192,15 +192,15 @@ static int present(loop_t *L, int full, double ms)
     }
     char err[VIEWER_ERR_LEN] = "";
     uint64_t t0 = now_ns();
-    int rc = v->display_ops->present(&L->display, 0, 0, L->frame.width, L->frame.height, L->frame.pixels,
-                                     L->frame.stride, err, sizeof err);
+    vfp_status_t rc = v->display_ops->present(&L->display, 0, 0, L->frame.width, L->frame.height, L->frame.pixels,
+                                              L->frame.stride, err, sizeof err);
     if (rc == VFP_DISPLAY_LOST) {
         display_lost(L, err[0] ? err : "gone");
-        return 0;
+        return VFP_OK;
     }
     if (rc) {
         fprintf(stderr, "volfix: %s\n", err);
-        return 2;
+        return VFP_ERR;
     }
     uint64_t now = now_ns();
     double worst;
@@ -210,32 +210,32 @@ static int present(loop_t *L, int full, double ms)
     L->shown_gen = L->gen;
     L->shown_full = full;
     log_frame(L, full, ms, (double)(now - t0) / 1e6, worst);
-    return 0;
+    return VFP_OK;
 }
 
-/* Open the display and size the pictures to it. Returns 0, or 2 with err. */
-static int open_display(loop_t *L, char *err, size_t errlen)
+/* Open the display and size the pictures to it. Returns VFP_OK, or VFP_ERR with err. */
+static vfp_status_t open_display(loop_t *L, char *err, size_t errlen)
 {
     viewer_t *v = L->v;
     memset(&L->display, 0, sizeof L->display);
     L->display.ops = v->display_ops;
     if (v->display_ops->open(&L->display, &v->board, err, errlen))
-        return 2;
+        return VFP_ERR;
     L->display_open = 1;
     if (L->frame.pixels && L->frame.width == L->display.width && L->frame.height == L->display.height &&
         L->frame.format == L->display.format)
-        return 0;
+        return VFP_OK;
     vfp_image_free(&L->clean);
     vfp_image_free(&L->frame);
     if (vfp_image_alloc(&L->clean, L->display.width, L->display.height, L->display.format) ||
         vfp_image_alloc(&L->frame, L->display.width, L->display.height, L->display.format)) {
         snprintf(err, errlen, "out of memory for %ux%u frames", L->display.width, L->display.height);
-        return 2;
+        return VFP_ERR;
     }
-    return 0;
+    return VFP_OK;
 }
 
-static int render_fast(loop_t *L)
+static vfp_status_t render_fast(loop_t *L)
 {
     viewer_t *v = L->v;
     const vfp_volume_t *vol = v->scene.preview_factor > 1 ? &v->scene.preview : &v->scene.full;
@@ -244,7 +244,7 @@ static int render_fast(loop_t *L)
     if (viewer_sync(&L->fast, &v->scene, vol, &v->controls, err, sizeof err) ||
         viewer_render(&L->fast, &v->controls, v->board.rotation, &L->clean, err, sizeof err)) {
         fprintf(stderr, "volfix: %s\n", err);
-        return 2;
+        return VFP_ERR;
     }
     L->clean_full = v->scene.preview_factor == 1;
     L->clean_ms = vfp_now_ms() - t0;
@@ -252,18 +252,19 @@ static int render_fast(loop_t *L)
     return present(L, L->clean_full, L->clean_ms);
 }
 
-/* Take the worker's frame if it is of the current controls. Returns 0, or 2 after printing its error. */
-static int take_full(loop_t *L)
+/* Take the worker's frame if it is of the current controls. Returns VFP_OK, or VFP_ERR after printing its error. */
+static vfp_status_t take_full(loop_t *L)
 {
     viewer_worker_t *w = &L->worker;
-    int status = 0, show = 0;
+    vfp_status_t status = VFP_OK;
+    int show = 0;
     double ms = 0;
     pthread_mutex_lock(&w->lock);
     if (w->have_result) {
         w->have_result = 0;
         if (w->result_status) {
             fprintf(stderr, "volfix: %s\n", w->result_err);
-            status = 2;
+            status = VFP_ERR;
         } else if (w->result_gen == L->gen && L->display_open && w->image.width == L->clean.width &&
                    w->image.height == L->clean.height && w->image.format == L->clean.format) {
             memcpy(L->clean.pixels, w->image.pixels, (size_t)w->image.stride * w->image.height);
@@ -330,12 +331,12 @@ static void summary(loop_t *L)
     printf("\n");
 }
 
-static int setup(loop_t *L, char *err, size_t errlen)
+static vfp_status_t setup(loop_t *L, char *err, size_t errlen)
 {
     viewer_t *v = L->v;
     if (pipe(signal_pipe) || set_nonblocking(signal_pipe[0]) || set_nonblocking(signal_pipe[1])) {
         snprintf(err, errlen, "cannot make a pipe for signals: %s", strerror(errno));
-        return 2;
+        return VFP_ERR;
     }
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -347,17 +348,17 @@ static int setup(loop_t *L, char *err, size_t errlen)
 
     L->input.ops = v->input_ops;
     if (v->input_ops->open(&L->input, &v->board, v->script, err, errlen))
-        return 2;
+        return VFP_ERR;
     L->input_open = 1;
     if (open_display(L, err, errlen))
-        return 2;
+        return VFP_ERR;
     if (v->scene.preview_factor > 1) {
         if (viewer_worker_start(&L->worker, &v->scene, v->board.rotation, err, errlen))
-            return 2;
+            return VFP_ERR;
         set_nonblocking(L->worker.wake_fd[0]);
         L->have_worker = 1;
     }
-    return 0;
+    return VFP_OK;
 }
 
 static void teardown(loop_t *L)
@@ -396,7 +397,7 @@ static int timeout_ms(uint64_t now, const uint64_t *deadlines, int n)
     return ms > 60000 ? 60000 : (int)ms;
 }
 
-int viewer_loop(viewer_t *v)
+vfp_status_t viewer_loop(viewer_t *v)
 {
     loop_t L;
     memset(&L, 0, sizeof L);
@@ -405,11 +406,11 @@ int viewer_loop(viewer_t *v)
     L.need_fast = 1;
     L.gen = 1;
     char err[VIEWER_ERR_LEN] = "";
-    int status = setup(&L, err, sizeof err);
+    vfp_status_t status = setup(&L, err, sizeof err);
     if (status) {
         fprintf(stderr, "volfix: %s\n", err);
         teardown(&L);
-        return 2;
+        return VFP_ERR;
     }
     const uint32_t *d = v->scene.full.core.dims;
     printf("volfix: %s (%ux%ux%u) on %s: display %s %ux%u, input %s, %d threads, preview %s\n", v->volume_arg, d[0],
@@ -430,7 +431,7 @@ int viewer_loop(viewer_t *v)
                 n = v->input_ops->read(&L.input, ev, MAX_EVENTS, now, err, sizeof err);
                 if (n < 0) {
                     fprintf(stderr, "volfix: %s\n", err);
-                    status = 2;
+                    status = VFP_ERR;
                     break;
                 }
                 apply_events(&L, ev, n);
@@ -439,7 +440,7 @@ int viewer_loop(viewer_t *v)
         if (status)
             break;
         if (!L.display_open && now >= L.reopen_at) {
-            if (open_display(&L, err, sizeof err) == 0) {
+            if (open_display(&L, err, sizeof err) == VFP_OK) {
                 fprintf(stderr, "volfix: display %s is back\n", v->board.display);
                 L.need_fast = 1;
             } else {
@@ -480,7 +481,7 @@ int viewer_loop(viewer_t *v)
         int rc = poll(fds, (nfds_t)nfds, timeout_ms(now_ns(), deadlines, 3));
         if (rc < 0 && errno != EINTR) {
             fprintf(stderr, "volfix: poll: %s\n", strerror(errno));
-            status = 2;
+            status = VFP_ERR;
             break;
         }
         if (rc > 0 && (fds[0].revents & POLLIN)) {

@@ -38,20 +38,20 @@ static const char usage[] =
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]   for raw voxel files\n"
     "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N. Ctrl-C quits.\n";
 
-static int bad(const char *option, const char *value, const char *expected)
+static vfp_status_t bad(const char *option, const char *value, const char *expected)
 {
     fprintf(stderr, "volfix: %s %s: expected %s\n", option, value ? value : "(missing)", expected);
-    return 2;
+    return VFP_ERR;
 }
 
-static int parse_int(const char *text, int lo, int hi, int *out)
+static vfp_status_t parse_int(const char *text, int lo, int hi, int *out)
 {
     char *end;
     long n = text ? strtol(text, &end, 10) : 0;
     if (!text || end == text || *end || n < lo || n > hi)
-        return 2;
+        return VFP_ERR;
     *out = (int)n;
-    return 0;
+    return VFP_OK;
 }
 
 typedef struct options {
@@ -63,7 +63,7 @@ typedef struct options {
     vfp_load_opts_t load;
 } options_t;
 
-static int parse(options_t *o, int argc, char **argv)
+static vfp_status_t parse(options_t *o, int argc, char **argv)
 {
     memset(o, 0, sizeof *o);
     o->mode = VF_MODE_PREINT1;
@@ -77,7 +77,7 @@ static int parse(options_t *o, int argc, char **argv)
         int takes = 1;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             fputs(usage, stdout);
-            return 1;
+            return VFP_HELP_SHOWN;
         } else if (!strcmp(a, "--board") && v) {
             o->board = v;
         } else if (!strcmp(a, "--preset") && v) {
@@ -133,13 +133,13 @@ static int parse(options_t *o, int argc, char **argv)
         } else if (!strcmp(a, "--dims") && v) {
             if (vfp_parse_dims(v, o->load.dims, err, sizeof err)) {
                 fprintf(stderr, "volfix: --dims: %s\n", err);
-                return 2;
+                return VFP_ERR;
             }
             o->load.have_dims = 1;
         } else if (!strcmp(a, "--type") && v) {
             if (vfp_parse_type(v, &o->load.type, err, sizeof err)) {
                 fprintf(stderr, "volfix: --type: %s\n", err);
-                return 2;
+                return VFP_ERR;
             }
             o->load.have_type = 1;
         } else if (!strcmp(a, "--big-endian")) {
@@ -155,30 +155,30 @@ static int parse(options_t *o, int argc, char **argv)
             takes = 0;
         } else {
             fprintf(stderr, "volfix: unknown option or extra argument '%s' (see volfix --help)\n", a);
-            return 2;
+            return VFP_ERR;
         }
         i += takes;
     }
     if (!o->board || !o->volume) {
         fprintf(stderr, "volfix: %s (usage: volfix --board FILE VOLUME [options]; see --help)\n",
                 !o->board ? "no board given" : "no volume given");
-        return 2;
+        return VFP_ERR;
     }
     if (o->preset && o->tf) {
         fprintf(stderr, "volfix: give --preset or --tf, not both\n");
-        return 2;
+        return VFP_ERR;
     }
-    return 0;
+    return VFP_OK;
 }
 
 /* The transfer functions the preset button cycles: the --tf file first if there is one, then the presets. */
-static int load_tfs(viewer_scene_t *s, const options_t *o, int *first, char *err, size_t errlen)
+static vfp_status_t load_tfs(viewer_scene_t *s, const options_t *o, int *first, char *err, size_t errlen)
 {
     s->tf_count = 0;
     *first = 0;
     if (o->tf) {
         if (vfp_tf_load(&s->tfs[0], o->tf, err, errlen))
-            return 2;
+            return VFP_ERR;
         snprintf(s->tf_args[0], sizeof s->tf_args[0], "--tf %s", o->tf);
         s->tf_count = 1;
     }
@@ -193,13 +193,13 @@ static int load_tfs(viewer_scene_t *s, const options_t *o, int *first, char *err
         vfp_tf_t unused;
         return vfp_tf_preset(&unused, o->preset, err, errlen); /* its message lists the names */
     }
-    return 0;
+    return VFP_OK;
 }
 
-static int setup(viewer_t *v, const options_t *o, char *err, size_t errlen)
+static vfp_status_t setup(viewer_t *v, const options_t *o, char *err, size_t errlen)
 {
     if (vfp_board_load(&v->board, o->board, err, errlen))
-        return 2;
+        return VFP_ERR;
     vfp_board_t *b = &v->board;
     if (o->device)
         snprintf(b->display_device, sizeof b->display_device, "%s", o->device);
@@ -213,19 +213,19 @@ static int setup(viewer_t *v, const options_t *o, char *err, size_t errlen)
         b->overlay = 1;
     v->script = o->script;
     if (!(v->display_ops = vfp_display_find(b->display, b, err, errlen)))
-        return 2;
+        return VFP_ERR;
     if (!(v->input_ops = vfp_input_find(o->script ? "script" : b->input, b, err, errlen)))
-        return 2;
+        return VFP_ERR;
 
     viewer_scene_t *s = &v->scene;
     if (vfp_volume_load(&s->full, o->volume, &o->load, err, errlen))
-        return 2;
+        return VFP_ERR;
     s->window = vfp_default_window(&s->full);
     if (o->window && vfp_parse_window(&s->full, o->window, &s->window, err, errlen))
-        return 2;
+        return VFP_ERR;
     int first;
     if (load_tfs(s, o, &first, err, errlen))
-        return 2;
+        return VFP_ERR;
     vf_params_default(&s->params);
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     s->threads = o->threads > 0 ? o->threads : b->threads > 0 ? b->threads : cpus < 1 ? 1 : cpus > 16 ? 16 : (int)cpus;
@@ -233,7 +233,7 @@ static int setup(viewer_t *v, const options_t *o, char *err, size_t errlen)
     uint64_t voxels = (uint64_t)d[0] * d[1] * d[2];
     s->preview_factor = o->preview > 0 ? o->preview : voxels >= 64 * 64 * 64 ? 2 : 1;
     if (s->preview_factor > 1 && vfp_volume_downsampled(&s->preview, &s->full, s->preview_factor, err, errlen))
-        return 2;
+        return VFP_ERR;
 
     vfp_controls_t *c = &v->controls;
     c->azimuth = o->view[0];
@@ -248,11 +248,11 @@ static int setup(viewer_t *v, const options_t *o, char *err, size_t errlen)
     v->home = *c;
     if (o->log && !(v->log = fopen(o->log, "w"))) {
         snprintf(err, errlen, "%s: cannot write the log", o->log);
-        return 2;
+        return VFP_ERR;
     }
     v->volume_arg = o->volume;
     v->max_frames = o->frames > 0 ? (unsigned)o->frames : 0;
-    return 0;
+    return VFP_OK;
 }
 
 int main(int argc, char **argv)
@@ -261,14 +261,14 @@ int main(int argc, char **argv)
     /* Renderers are re-made at other sizes as modes, presets and transfer functions change. glibc would raise its
      * mmap threshold after the first large free and then serve those arenas from the heap, where they fragment
      * and the process grows over a long session; a fixed threshold keeps them in mmap, given back on free. 32 KB
-     * puts frame images and band scratch there too: at 128 KB, a heap fragmented by them grew the peak resident
-     * size by up to 100 KB late in tests/long's 10,000 frames (at 32 KB, 80 KB at most in six runs). */
+     * rather than glibc's 128 KB puts frame images and band scratch there too, so that they cannot fragment the
+     * heap either: tests/long holds the peak resident size of 10,000 frames within its bound. */
     mallopt(M_MMAP_THRESHOLD, 32 * 1024);
 #endif
     options_t o;
-    int status = parse(&o, argc, argv);
+    vfp_status_t status = parse(&o, argc, argv);
     if (status)
-        return status == 1 ? 0 : 2;
+        return vfp_exit_status(status);
     viewer_t v;
     memset(&v, 0, sizeof v);
     char err[VIEWER_ERR_LEN] = "";
@@ -282,5 +282,5 @@ int main(int argc, char **argv)
         fclose(v.log);
     vfp_volume_free(&v.scene.full);
     vfp_volume_free(&v.scene.preview);
-    return status;
+    return vfp_exit_status(status);
 }

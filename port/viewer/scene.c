@@ -10,8 +10,8 @@ void viewer_renderer_close(viewer_renderer_t *vr)
     vr->open = 0;
 }
 
-int viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_volume_t *volume,
-                const vfp_controls_t *c, char *err, size_t errlen)
+vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_volume_t *volume,
+                         const vfp_controls_t *c, char *err, size_t errlen)
 {
     if (vr->open && (vr->volume != volume || vr->mode != c->mode))
         viewer_renderer_close(vr);
@@ -20,7 +20,7 @@ int viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_vo
         vf_params_t params = scene->params;
         params.mode = c->mode;
         if (vfp_render_open(&vr->r, &params, &volume->core, scene->threads, err, errlen))
-            return 2;
+            return VFP_ERR;
         vr->open = 1;
         vr->volume = volume;
         vr->mode = c->mode;
@@ -28,7 +28,7 @@ int viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_vo
          * the slices are built once per renderer. */
         if (vfp_render_set_window(&vr->r, scene->window, err, errlen)) {
             viewer_renderer_close(vr);
-            return 2;
+            return VFP_ERR;
         }
     }
     if (fresh || vr->preset != c->preset || vr->tf_shift != c->tf_shift || vr->tf_scale != c->tf_scale) {
@@ -38,17 +38,17 @@ int viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_vo
         uint32_t n = vfp_tf_to_core(&tf, &scene->full, scene->window, points);
         if (vfp_render_set_tf(&vr->r, points, n, err, errlen)) {
             viewer_renderer_close(vr); /* half applied: start again next time */
-            return 2;
+            return VFP_ERR;
         }
         vr->preset = c->preset;
         vr->tf_shift = c->tf_shift;
         vr->tf_scale = c->tf_scale;
     }
-    return 0;
+    return VFP_OK;
 }
 
-int viewer_render(viewer_renderer_t *vr, const vfp_controls_t *c, int rotation, const vf_image_t *image, char *err,
-                  size_t errlen)
+vfp_status_t viewer_render(viewer_renderer_t *vr, const vfp_controls_t *c, int rotation, const vf_image_t *image,
+                           char *err, size_t errlen)
 {
     vf_view_t view = vfp_controls_view(c, rotation);
     return vfp_render_frame(&vr->r, &view, image, err, errlen);

@@ -55,12 +55,12 @@ typedef struct viewer_renderer {
 } viewer_renderer_t;
 
 /* Bring vr up to date with c: a new renderer for a new mode, a reclassification for a new transfer function.
- * Returns 0, or 2 with err. */
-int viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_volume_t *volume,
-                const vfp_controls_t *c, char *err, size_t errlen);
+ * Returns VFP_OK, or VFP_ERR with err. */
+vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_volume_t *volume,
+                         const vfp_controls_t *c, char *err, size_t errlen);
 /* Render a frame of c into image (after viewer_sync). */
-int viewer_render(viewer_renderer_t *vr, const vfp_controls_t *c, int rotation, const vf_image_t *image, char *err,
-                  size_t errlen);
+vfp_status_t viewer_render(viewer_renderer_t *vr, const vfp_controls_t *c, int rotation, const vf_image_t *image,
+                           char *err, size_t errlen);
 void viewer_renderer_close(viewer_renderer_t *vr);
 
 /* The full-quality renderer's thread. The loop hands it the controls of a generation; it renders and writes a
@@ -86,11 +86,12 @@ typedef struct viewer_worker {
     uint64_t result_gen;
     vf_image_t image;        /* the result, in the display's size and format */
     double result_ms;
-    int result_status;
+    vfp_status_t result_status;
     char result_err[VIEWER_ERR_LEN];
 } viewer_worker_t;
 
-int viewer_worker_start(viewer_worker_t *w, const viewer_scene_t *scene, int rotation, char *err, size_t errlen);
+vfp_status_t viewer_worker_start(viewer_worker_t *w, const viewer_scene_t *scene, int rotation, char *err,
+                                 size_t errlen);
 /* Hand it a frame to render at this size and format; only while it is neither busy nor holding a result the
  * loop has not taken (the loop reads the result image under the lock, and nobody else writes it then). */
 void viewer_worker_request(viewer_worker_t *w, const vfp_controls_t *c, uint64_t gen, uint32_t width,
@@ -112,7 +113,7 @@ typedef struct viewer {
 } viewer_t;
 
 /* Run until quit (a quit button or the script's "quit": the full-quality frame is shown first), SIGINT or
- * SIGTERM. Returns 0, or 2 after printing a one-line error. Prints the session's summary. */
-int viewer_loop(viewer_t *v);
+ * SIGTERM. Returns VFP_OK, or VFP_ERR after printing a one-line error. Prints the session's summary. */
+vfp_status_t viewer_loop(viewer_t *v);
 
 #endif

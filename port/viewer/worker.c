@@ -11,10 +11,10 @@ static int outdated(viewer_worker_t *w, uint64_t gen)
     return atomic_load(&w->latest) != gen;
 }
 
-static int ensure_image(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
+static vfp_status_t ensure_image(vf_image_t *img, uint32_t width, uint32_t height, vf_format_t format)
 {
     if (img->pixels && img->width == width && img->height == height && img->format == format)
-        return 0;
+        return VFP_OK;
     vfp_image_free(img);
     return vfp_image_alloc(img, width, height, format);
 }
@@ -39,13 +39,14 @@ static void *worker_main(void *arg)
         /* Work outside the lock; the image is ours until we post the result (the loop reads it only then). */
         char err[VIEWER_ERR_LEN] = "";
         double t0 = vfp_now_ms();
-        int status = 0, dropped = outdated(w, gen);
+        vfp_status_t status = VFP_OK;
+        int dropped = outdated(w, gen);
         if (!dropped)
             status = viewer_sync(&w->vr, w->scene, &w->scene->full, &c, err, sizeof err);
         dropped = dropped || outdated(w, gen); /* the classification stays: the next request may use it */
         if (!status && !dropped && ensure_image(&w->image, width, height, format)) {
             snprintf(err, sizeof err, "out of memory for a %ux%u frame", width, height);
-            status = 2;
+            status = VFP_ERR;
         }
         if (!status && !dropped)
             status = viewer_render(&w->vr, &c, w->rotation, &w->image, err, sizeof err);
@@ -68,7 +69,8 @@ static void *worker_main(void *arg)
     return NULL;
 }
 
-int viewer_worker_start(viewer_worker_t *w, const viewer_scene_t *scene, int rotation, char *err, size_t errlen)
+vfp_status_t viewer_worker_start(viewer_worker_t *w, const viewer_scene_t *scene, int rotation, char *err,
+                                 size_t errlen)
 {
     memset(w, 0, sizeof *w);
     w->scene = scene;
@@ -76,7 +78,7 @@ int viewer_worker_start(viewer_worker_t *w, const viewer_scene_t *scene, int rot
     atomic_init(&w->latest, 0);
     if (pipe(w->wake_fd)) {
         snprintf(err, errlen, "cannot make a pipe for the renderer thread: %s", strerror(errno));
-        return 2;
+        return VFP_ERR;
     }
     pthread_mutex_init(&w->lock, NULL);
     pthread_cond_init(&w->cond, NULL);
@@ -84,9 +86,9 @@ int viewer_worker_start(viewer_worker_t *w, const viewer_scene_t *scene, int rot
         snprintf(err, errlen, "cannot start the renderer thread");
         close(w->wake_fd[0]);
         close(w->wake_fd[1]);
-        return 2;
+        return VFP_ERR;
     }
-    return 0;
+    return VFP_OK;
 }
 
 void viewer_worker_request(viewer_worker_t *w, const vfp_controls_t *c, uint64_t gen, uint32_t width,

@@ -90,6 +90,18 @@ static inline void fz_check_error(const char *err, const char *path)
         abort();
 }
 
+/* A line-oriented parser's outcome: 0 when it took the input, 1 when it refused it, after checking its error as
+ * fz_check_error does. */
+static inline int fz_refused(vfp_status_t status, const char *err, const char *path)
+{
+    if (status == VFP_OK) {
+        fz_show(NULL);
+        return 0;
+    }
+    fz_check_error(err, path);
+    return 1;
+}
+
 /* Called first by every harness: removes the files the previous input wrote, so that no input sees another's
  * (a NRRD header may name any file in the directory as its data). */
 static inline void fz_begin(void)
@@ -117,7 +129,7 @@ static inline void fz_load_volume(const char *path, const vfp_load_opts_t *opts)
 {
     vfp_volume_t vol;
     char err[VFP_ERR_LEN];
-    if (vfp_volume_load(&vol, path, opts, err, sizeof err) == 0) {
+    if (vfp_volume_load(&vol, path, opts, err, sizeof err) == VFP_OK) {
         fz_show(NULL);
         vf_window_t w = vfp_default_window(&vol);
         if (!(w.lo < w.hi) || !vol.data || vol.core.voxels != vol.data)

@@ -8,11 +8,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const char *path = fz_write("x.board", data, size);
     vfp_board_t board;
     char err[VFP_ERR_LEN];
-    if (vfp_board_load(&board, path, err, sizeof err) != 0) {
-        fz_check_error(err, path);
+    if (fz_refused(vfp_board_load(&board, path, err, sizeof err), err, path))
         return 0;
-    }
-    fz_show(NULL);
     /* What the viewer relies on once a board is read. */
     if (board.knob_count < 0 || board.knob_count > VFP_MAX_KNOBS || board.button_count < 0 ||
         board.button_count > VFP_MAX_BUTTONS || !board.display[0] || !board.input[0] || board.threads < 1)

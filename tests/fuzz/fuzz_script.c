@@ -39,10 +39,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     board.button_count = 2;
     vfp_input_t in;
     char err[VFP_ERR_LEN];
-    if (vfp_input_script_ops.open(&in, &board, path, err, sizeof err) == 0)
+    if (!fz_refused(vfp_input_script_ops.open(&in, &board, path, err, sizeof err), err, path))
         drain(&in, board.knob_count, board.button_count);
-    else
-        fz_check_error(err, path);
 
     if (memchr(data, 0, size))
         return 0; /* a string ends at its NUL; the file's NUL was the file reader's to refuse */
@@ -51,10 +49,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         abort();
     memcpy(text, data, size);
     text[size] = 0;
-    if (vfp_script_load_string(&in, NULL, text, "s.script", 1000, err, sizeof err) == 0)
+    if (!fz_refused(vfp_script_load_string(&in, NULL, text, "s.script", 1000, err, sizeof err), err, "s.script"))
         drain(&in, VFP_MAX_KNOBS, VFP_MAX_BUTTONS);
-    else
-        fz_check_error(err, "s.script");
     free(text);
     return 0;
 }

@@ -30,11 +30,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const char *path = fz_write("x.tf", data, size);
     vfp_tf_t tf;
     char err[VFP_ERR_LEN];
-    if (vfp_tf_load(&tf, path, err, sizeof err) != 0) {
-        fz_check_error(err, path);
+    if (fz_refused(vfp_tf_load(&tf, path, err, sizeof err), err, path))
         return 0;
-    }
-    fz_show(NULL);
     /* An 8-bit volume with its full window; 16-bit CT with a NIfTI slope and intercept; and a negative slope,
      * whose window runs downwards. Only the type, slope and intercept matter here. */
     vfp_volume_t u8, ct, flipped;

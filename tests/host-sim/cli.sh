@@ -3,31 +3,8 @@
 # one line on stderr that names the file (and line) and says what was expected.
 cd "$(dirname "$0")/../.." || exit 2
 sim=${BUILD:-build}/volfix-sim
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-
-ok() { echo "ok - cli/$1"; }
-fail() { echo "not ok - cli/$1: $2"; }
-
-# expect_error NAME PHRASE ARGS...: status 2, one stderr line containing PHRASE, nothing on stdout
-expect_error() {
-    name=$1 phrase=$2
-    shift 2
-    "$sim" "$@" >"$tmp/out" 2>"$tmp/err"
-    status=$?
-    lines=$(wc -l <"$tmp/err")
-    if [ $status -ne 2 ]; then
-        fail "$name" "exit status $status, expected 2 ($(head -n 1 "$tmp/err"))"
-    elif [ "$lines" -ne 1 ]; then
-        fail "$name" "$lines lines on stderr, expected one: $(tr '\n' '|' <"$tmp/err")"
-    elif ! grep -qF -- "$phrase" "$tmp/err"; then
-        fail "$name" "stderr lacks '$phrase': $(cat "$tmp/err")"
-    elif [ -s "$tmp/out" ]; then
-        fail "$name" "unexpected output on stdout"
-    else
-        ok "$name"
-    fi
-}
+suite=cli program=$sim
+. tests/check.inc
 
 # usage and help
 "$sim" >/dev/null 2>"$tmp/err"

@@ -11,8 +11,8 @@ dir=out/study
 rm -rf "$dir"
 mkdir -p out
 
-ok() { echo "ok - study/$1"; }
-fail() { echo "not ok - study/$1: $2"; }
+suite=study
+. tests/check.inc
 
 if ! "$sim" study --quick -o "$dir" >out/study.log 2>&1; then
     fail "runs" "$(tail -n 3 out/study.log | tr '\n' ' ')"

@@ -4,7 +4,7 @@
  * continuous model (tau and colour linear between table entries, DESIGN.md "The mathematics").
  */
 #include "check.h"
-#include "ref/ref.h"
+#include "ref_fixtures.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -133,21 +133,10 @@ static const double *entry(int N, int f, int b)
     return g_table + 4 * ((size_t)f * (size_t)N + (size_t)b);
 }
 
-/* A smooth opacity bump and smooth colours through 33 control points (tau <= -ln 0.1). */
-static int smooth_tf(ref_tf_point_t *tf, double peak)
-{
-    for (int p = 0; p < 33; p++) {
-        double s = p * 255.0 / 32;
-        tf[p] = (ref_tf_point_t){s, 0.5 + 0.5 * sin(s / 40), s / 255, 1 - s / 255,
-                                 peak * exp(-((s - 140) / 45) * ((s - 140) / 45))};
-    }
-    return 33;
-}
-
 static void point_table_closed_form(void)
 {
     ref_tf_point_t tf[33];
-    int np = smooth_tf(tf, 0.9);
+    int np = rf_smooth_tf(tf, 0.9);
     static double point[4 * 256];
     CHECK_EQ(ref_point_table(tf, np, 256, 1.3, point), 0);
     for (int i = 0; i < 256; i++) {
@@ -309,7 +298,7 @@ static double table_error(const ref_tf_point_t *tf, int np, int N, double d, int
 static void preint_matches_continuous_model(void)
 {
     ref_tf_point_t tf[33];
-    int np = smooth_tf(tf, 0.9);
+    int np = rf_smooth_tf(tf, 0.9);
     const struct { int N, stride; double d, bound; } runs[] = {
         {256, 5, 1.0, 2.5e-3}, {256, 7, 1.7, 4e-3}, {256, 9, 0.5, 1e-3}, {64, 1, 1.7, 1.5e-2}, {16, 1, 1.0, 3e-2},
     };

@@ -6,21 +6,17 @@
  * REF_VERBOSE=1 prints the measured differences.
  */
 #include "check.h"
-#include "ref/ref.h"
+#include "ref_fixtures.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
-#define BAU(deg) ((int32_t)((deg) * 65536.0 / 360.0 + ((deg) < 0 ? -0.5 : 0.5))) /* nearest, a constant */
-
 static uint32_t g_seed = 4242;
 
-static double rnd(void) /* uniform in [0, 1) */
+static double rnd(void)
 {
-    g_seed = g_seed * 1664525u + 1013904223u;
-    return (g_seed >> 8) / 16777216.0;
+    return rf_uniform(&g_seed);
 }
 
 static int verbose(void)
@@ -28,32 +24,9 @@ static int verbose(void)
     return getenv("REF_VERBOSE") != NULL;
 }
 
-/* A volume of exactly dims voxels (so that AddressSanitizer sees any read past the last one). */
-static uint8_t *volume_of(const int dims[3], int (*value)(int x, int y, int z))
-{
-    uint8_t *s = malloc((size_t)dims[0] * dims[1] * dims[2]);
-    for (int z = 0; s && z < dims[2]; z++)
-        for (int y = 0; y < dims[1]; y++)
-            for (int x = 0; x < dims[0]; x++)
-                s[x + dims[0] * (y + dims[1] * z)] = (uint8_t)value(x, y, z);
-    return s;
-}
-
-static int const_200(int x, int y, int z) { (void)x, (void)y, (void)z; return 200; }
 static int const_100(int x, int y, int z) { (void)x, (void)y, (void)z; return 100; }
 static int ramp_x(int x, int y, int z) { (void)y, (void)z; return 255 * x; }
 static int random_scalar(int x, int y, int z) { (void)x, (void)y, (void)z; return (int)(rnd() * 256); }
-
-/* A smooth opacity bump and smooth colours through 33 control points. */
-static int smooth_tf(ref_tf_point_t *tf, double peak)
-{
-    for (int p = 0; p < 33; p++) {
-        double s = p * 255.0 / 32;
-        tf[p] = (ref_tf_point_t){s, 0.5 + 0.5 * sin(s / 40), s / 255, 1 - s / 255,
-                                 peak * exp(-((s - 140) / 45) * ((s - 140) / 45))};
-    }
-    return 33;
-}
 
 static ref_params_t params(ref_mode_t mode, int N)
 {
@@ -172,7 +145,7 @@ static void lookup_preint_by_hand(void)
 static void lookup_bilinear_render(void)
 {
     int dims[3] = {2, 2, 2};
-    uint8_t *s = volume_of(dims, const_100);
+    uint8_t *s = rf_volume_of(dims, const_100);
     ref_volume_t vol = {{2, 2, 2}, {1, 1, 1}, s};
     const ref_tf_point_t tf[] = {{0, 1, 0, 0, 0.1}, {127.5, 0, 1, 0, 0.7}, {255, 0, 0, 1, 0.3}};
     ref_view_t view = {0, 0, 0, sqrt(3.0) / 4}; /* scale 1: final pixels 1..2 are intermediate pixels 0..1 */
@@ -202,10 +175,10 @@ static void lookup_bilinear_render(void)
 static void lookup_bilinear_on_entries_is_nearest(void)
 {
     int dims[3] = {6, 5, 4};
-    uint8_t *s = volume_of(dims, random_scalar);
+    uint8_t *s = rf_volume_of(dims, random_scalar);
     ref_volume_t vol = {{6, 5, 4}, {1, 1, 1}, s};
     ref_tf_point_t tf[33];
-    int np = smooth_tf(tf, 0.6);
+    int np = rf_smooth_tf(tf, 0.6);
     ref_view_t view = {0, 0, 0, 1};
     static double a[20 * 20 * 3], b[20 * 20 * 3];
     for (int m = 0; m < 2; m++) {
@@ -223,7 +196,7 @@ static void lookup_bilinear_on_entries_is_nearest(void)
 static void table_bits_rounding(void)
 {
     ref_tf_point_t tf[33];
-    int np = smooth_tf(tf, 0.9);
+    int np = rf_smooth_tf(tf, 0.9);
     enum { NP = 256, NI = 64 };
     static double t16[4 * NI * NI + 4 * NP], t8[4 * NI * NI + 4 * NP];
     CHECK_EQ(ref_point_table(tf, np, NP, 1.3, t16), 0);
@@ -260,7 +233,7 @@ static void table_bits_rounding(void)
 static void table_bits_render_by_hand(void)
 {
     int dims[3] = {2, 2, 2};
-    uint8_t *s = volume_of(dims, const_200);
+    uint8_t *s = rf_volume_of(dims, rf_const_200);
     ref_volume_t vol = {{2, 2, 2}, {1, 1, 1}, s};
     const ref_tf_point_t tf = {0, 0.2, 0.5, 0.9, 0.35};
     ref_view_t view = {0, 0, 0, sqrt(3.0) / 4};
@@ -380,7 +353,7 @@ static int render_CA(const ref_volume_t *vol, const ref_tf_point_t *tf, int np, 
 static void lut_matches_rebuild_constant_tf(void)
 {
     int dims[3] = {9, 7, 6};
-    uint8_t *s = volume_of(dims, random_scalar);
+    uint8_t *s = rf_volume_of(dims, random_scalar);
     ref_volume_t vol = {{9, 7, 6}, {1, 1.3, 2.1}, s};
     const ref_view_t views[] = {{BAU(30), BAU(20), 0, 1}, {BAU(200), BAU(-50), BAU(10), 1.3},
                                 {BAU(41), BAU(-35), BAU(77), 0.9}, {BAU(120), BAU(5), 0, 1.1}};
@@ -432,10 +405,10 @@ static void lut_matches_rebuild_constant_tf(void)
 static void lut_differs_where_spec_says(void)
 {
     int dims[3] = {9, 7, 6};
-    uint8_t *s = volume_of(dims, random_scalar);
+    uint8_t *s = rf_volume_of(dims, random_scalar);
     ref_volume_t vol = {{9, 7, 6}, {1, 1, 1}, s};
     ref_tf_point_t tf[33];
-    int np = smooth_tf(tf, 0.9);
+    int np = rf_smooth_tf(tf, 0.9);
     ref_view_t view = {BAU(35), BAU(30), 0, 1};
     enum { W = 24, H = 24 };
     static double r[W * H * 3], l[W * H * 3];
@@ -468,10 +441,10 @@ static void lut_differs_where_spec_says(void)
 static void lut_slab_one_identical(void)
 {
     int dims[3] = {7, 6, 5};
-    uint8_t *s = volume_of(dims, random_scalar);
+    uint8_t *s = rf_volume_of(dims, random_scalar);
     ref_volume_t vol = {{7, 6, 5}, {1, 1, 1}, s};
     ref_tf_point_t tf[33];
-    int np = smooth_tf(tf, 0.9);
+    int np = rf_smooth_tf(tf, 0.9);
     const ref_view_t views[] = {{0, 0, 0, 1}, {BAU(180), 0, BAU(30), 1}, {0, BAU(90), 0, 1.2}, {BAU(-90), 0, 0, 1}};
     enum { W = 18, H = 16 };
     static double r[W * H * 3], l[W * H * 3];
@@ -499,7 +472,7 @@ static void lut_slab_one_identical(void)
 static void lut_after_table_bits_by_hand(void)
 {
     int dims[3] = {2, 2, 2};
-    uint8_t *s = volume_of(dims, const_200);
+    uint8_t *s = rf_volume_of(dims, rf_const_200);
     ref_volume_t vol = {{2, 2, 2}, {1, 1, 1.5}, s};
     const ref_tf_point_t tf = {0, 0.2, 0.5, 0.9, 0.35};
     ref_view_t view = {0, 0, 0, sqrt(4.25) / 4}; /* scale 1: final pixels 1..2 are intermediate pixels 0..1 */
@@ -535,10 +508,10 @@ static void lut_after_table_bits_by_hand(void)
 static void preclass_constant_volume_is_point(void)
 {
     int dims[3] = {7, 6, 5};
-    uint8_t *s = volume_of(dims, const_200);
+    uint8_t *s = rf_volume_of(dims, rf_const_200);
     ref_volume_t vol = {{7, 6, 5}, {1, 1.2, 0.9}, s};
     ref_tf_point_t tf[33];
-    int np = smooth_tf(tf, 0.9);
+    int np = rf_smooth_tf(tf, 0.9);
     const ref_view_t views[] = {{BAU(30), BAU(20), 0, 1}, {BAU(200), BAU(-50), BAU(10), 1.6}, {0, 0, 0, 1}};
     enum { W = 20, H = 22 };
     static double a[W * H * 3], b[W * H * 3];
@@ -571,7 +544,7 @@ static void preclass_constant_volume_is_point(void)
 static void preclass_interpolates_classified_values(void)
 {
     int dims[3] = {2, 2, 2};
-    uint8_t *s = volume_of(dims, ramp_x);
+    uint8_t *s = rf_volume_of(dims, ramp_x);
     ref_volume_t vol = {{2, 2, 2}, {1, 1, 1}, s};
     const ref_tf_point_t tf[] = {{0, 1, 0, 0, 0.6}, {127.5, 0, 1, 0, 0.02}, {255, 0, 0, 1, 0.6}};
     ref_view_t view = {BAU(22.5), 0, 0, 1};
@@ -611,7 +584,7 @@ static void preclass_interpolates_classified_values(void)
 static void bad_arguments(void)
 {
     int dims[3] = {3, 3, 3};
-    uint8_t *s = volume_of(dims, const_200);
+    uint8_t *s = rf_volume_of(dims, rf_const_200);
     ref_volume_t vol = {{3, 3, 3}, {1, 1, 1}, s};
     const ref_tf_point_t tf = {0, 0.2, 0.6, 0.9, 0.3};
     ref_view_t view = {BAU(10), BAU(10), 0, 1};

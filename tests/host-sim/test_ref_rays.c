@@ -8,7 +8,7 @@
  */
 #include "check.h"
 #include "io/pngio.h"
-#include "ref/ref.h"
+#include "ref_fixtures.h"
 #include "study.h"
 #include "truth/truth.h"
 
@@ -18,25 +18,9 @@
 
 static const int all_rays[] = {1, 2, 4, 8, 16};
 
-static uint8_t *volume_of(const int dims[3], int (*value)(int x, int y, int z))
-{
-    uint8_t *s = malloc((size_t)dims[0] * dims[1] * dims[2]);
-    for (int z = 0; s && z < dims[2]; z++)
-        for (int y = 0; y < dims[1]; y++)
-            for (int x = 0; x < dims[0]; x++)
-                s[((size_t)z * dims[1] + y) * dims[0] + x] = (uint8_t)value(x, y, z);
-    return s;
-}
-
 static int blob(int x, int y, int z)
 {
     return (int)(127.5 + 120 * sin(0.7 * x + 0.2) * cos(0.45 * y - 0.5 * z));
-}
-
-static int const_200(int x, int y, int z)
-{
-    (void)x, (void)y, (void)z;
-    return 200;
 }
 
 /* Peaks, so that neighbouring rays differ, and a ramp, so that nothing terminates everywhere. */
@@ -85,7 +69,7 @@ static double *composite_rays(const ref_volume_t *vol, const ref_factor_t *f, re
 static void one_ray_is_the_old_image(void)
 {
     int dims[3] = {12, 10, 9};
-    uint8_t *s = volume_of(dims, blob);
+    uint8_t *s = rf_volume_of(dims, blob);
     ref_volume_t vol = {{12, 10, 9}, {1, 1.5, 1.25}, s};
     for (int n = 0; n < NVIEWS; n++) {
         ref_factor_t f;
@@ -128,7 +112,7 @@ static void one_ray_is_the_old_image(void)
 static void rays_keep_the_voxel_rays(void)
 {
     int dims[3] = {12, 10, 9};
-    uint8_t *s = volume_of(dims, blob);
+    uint8_t *s = rf_volume_of(dims, blob);
     ref_volume_t vol = {{12, 10, 9}, {1, 1.5, 1.25}, s};
     ref_lut_t *lut = malloc(sizeof *lut);
     CHECK(lut != NULL);
@@ -178,7 +162,7 @@ static void rays_keep_the_voxel_rays(void)
 static void constant_volume_is_constant_inside(void)
 {
     int dims[3] = {9, 7, 5};
-    uint8_t *s = volume_of(dims, const_200);
+    uint8_t *s = rf_volume_of(dims, rf_const_200);
     ref_volume_t vol = {{9, 7, 5}, {1, 1.5, 1}, s};
     const ref_view_t flat[] = {{3000, 2000, 500, 1}, {-2500, 1500, 0, 1}, {16384 + 3000, -2000, 0, 1}};
     for (int n = 0; n < 3; n++) {
@@ -235,7 +219,7 @@ static void constant_volume_is_constant_inside(void)
 static void partial_slabs_match_truth_between_voxels(void)
 {
     int dims[3] = {9, 7, 5};
-    uint8_t *s = volume_of(dims, const_200);
+    uint8_t *s = rf_volume_of(dims, rf_const_200);
     ref_volume_t vol = {{9, 7, 5}, {1, 1.5, 1}, s};
     const ref_view_t oblique[] = {{3000, 2000, 500, 1}, {20000, -7000, 0, 1}, {9000, 12000, 0, 1}};
     for (int n = 0; n < 3; n++) {
@@ -280,7 +264,7 @@ static int ramp_xy(int x, int y, int z)
 static void face_scalars_between_voxels(void)
 {
     int dims[3] = {9, 7, 5};
-    uint8_t *s = volume_of(dims, ramp_xy);
+    uint8_t *s = rf_volume_of(dims, ramp_xy);
     ref_volume_t vol = {{9, 7, 5}, {1, 1, 1}, s};
     const ref_tf_point_t tf[] = {{0, 0, 0, 1, 0.3}, {255, 1, 0, 0, 0.3}};
     const ref_view_t oblique[] = {{3000, 2000, 500, 1}, {-5000, 7000, 0, 1}, {6000, -9000, 0, 1}};
@@ -328,7 +312,7 @@ static void face_scalars_between_voxels(void)
 static void warp_reads_the_scaled_image(void)
 {
     int dims[3] = {12, 10, 9};
-    uint8_t *s = volume_of(dims, blob);
+    uint8_t *s = rf_volume_of(dims, blob);
     ref_volume_t vol = {{12, 10, 9}, {1, 1.5, 1.25}, s};
     enum { W = 40, H = 32 };
     static double one_rgb[W * H * 3], many_rgb[W * H * 3];
@@ -380,7 +364,7 @@ static void warp_reads_the_scaled_image(void)
 static void bad_rays_refused(void)
 {
     int dims[3] = {6, 5, 4};
-    uint8_t *s = volume_of(dims, blob);
+    uint8_t *s = rf_volume_of(dims, blob);
     ref_volume_t vol = {{6, 5, 4}, {1, 1, 1}, s};
     ref_view_t view = {3000, 2000, 0, 1};
     ref_factor_t f;

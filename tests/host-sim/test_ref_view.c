@@ -5,22 +5,18 @@
  * counted analytically; symmetries of the whole frame.
  */
 #include "check.h"
-#include "ref/ref.h"
+#include "ref_fixtures.h"
 #include "truth/truth.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
-#define BAU(deg) ((int32_t)((deg) * 65536.0 / 360.0 + ((deg) < 0 ? -0.5 : 0.5))) /* nearest, a constant */
-
 static uint32_t g_seed = 12345;
 
-static double rnd(void) /* uniform in [0, 1) */
+static double rnd(void)
 {
-    g_seed = g_seed * 1664525u + 1013904223u;
-    return (g_seed >> 8) / 16777216.0;
+    return rf_uniform(&g_seed);
 }
 
 /* The camera of section 3, independently of ref_factor.c: R = Rz(roll) Rx(elevation) Ry(azimuth). */
@@ -262,17 +258,6 @@ static int composite_with(const ref_volume_t *vol, const ref_view_t *view, const
 }
 
 /* A volume of exactly dims voxels (so that AddressSanitizer sees any read past the last one). */
-static uint8_t *volume_of(const int dims[3], int (*value)(int x, int y, int z))
-{
-    uint8_t *s = malloc((size_t)dims[0] * dims[1] * dims[2]);
-    for (int z = 0; z < dims[2]; z++)
-        for (int y = 0; y < dims[1]; y++)
-            for (int x = 0; x < dims[0]; x++)
-                s[x + dims[0] * (y + dims[1] * z)] = (uint8_t)value(x, y, z);
-    return s;
-}
-
-static int const_200(int x, int y, int z) { (void)x, (void)y, (void)z; return 200; }
 static int red_then_blue(int x, int y, int z) { (void)x, (void)y; return z ? 255 : 0; }
 static int oblique_slices(int x, int y, int z) { (void)y; return z ? 255 * x : 40 + 100 * x; }
 static int random_scalar(int x, int y, int z) { (void)x, (void)y, (void)z; return (int)(rnd() * 256); }
@@ -280,7 +265,7 @@ static int random_scalar(int x, int y, int z) { (void)x, (void)y, (void)z; retur
 static void composite_head_on_closed_form(void)
 {
     int dims[3] = {2, 2, 2};
-    uint8_t *s = volume_of(dims, const_200);
+    uint8_t *s = rf_volume_of(dims, rf_const_200);
     ref_volume_t vol = {{2, 2, 2}, {1, 1, 1}, s};
     const ref_tf_point_t tf = {0, 0.2, 0.5, 0.9, 0.3};
     /* scale 1 (zoom sqrt 3 / 4 on 4 x 4): final pixels 1..2 are intermediate pixels 0..1, 0 and 3 outside */
@@ -310,7 +295,7 @@ static void composite_head_on_closed_form(void)
 static void composite_order_follows_view(void)
 {
     int dims[3] = {2, 2, 2};
-    uint8_t *s = volume_of(dims, red_then_blue); /* slice z = 0 scalar 0 (red), z = 1 scalar 255 (blue) */
+    uint8_t *s = rf_volume_of(dims, red_then_blue); /* slice z = 0 scalar 0 (red), z = 1 scalar 255 (blue) */
     ref_volume_t vol = {{2, 2, 2}, {1, 1, 1}, s};
     const ref_tf_point_t tf[] = {{0, 1, 0, 0, 0.5}, {255, 0, 0, 1, 0.5}};
     for (int m = 0; m < 2; m++) {
@@ -341,7 +326,7 @@ static void composite_order_follows_view(void)
 static void composite_oblique_by_hand(void)
 {
     int dims[3] = {2, 2, 2};
-    uint8_t *s = volume_of(dims, oblique_slices);
+    uint8_t *s = rf_volume_of(dims, oblique_slices);
     ref_volume_t vol = {{2, 2, 2}, {1, 1, 1}, s};
     const ref_tf_point_t tf[] = {{0, 0, 1, 0.5, 0}, {255, 1, 0, 0.5, 0.8}};
     ref_view_t view = {BAU(22.5), 0, 0, 1};
@@ -379,7 +364,7 @@ static void composite_oblique_by_hand(void)
 static void composite_early_termination(void)
 {
     int dims[3] = {2, 2, 10};
-    uint8_t *s = volume_of(dims, const_200);
+    uint8_t *s = rf_volume_of(dims, rf_const_200);
     ref_volume_t vol = {{2, 2, 10}, {1, 1, 1}, s};
     ref_view_t view = {0, 0, 0, 1};
     /* a0 0.95: A after 2 segments 0.9975 < 1 - 2^-10 <= 0.999875 after 3, so 3 segments, not 10 (or 9) */
@@ -407,7 +392,7 @@ static void composite_early_termination(void)
 static void composite_constant_tf_counts(void)
 {
     int dims[3] = {9, 7, 5};
-    uint8_t *s = volume_of(dims, random_scalar);
+    uint8_t *s = rf_volume_of(dims, random_scalar);
     ref_volume_t vol = {{9, 7, 5}, {1, 1.5, 1}, s};
     const ref_tf_point_t tf = {0, 0.3, 0.6, 0.9, 0.05};
     const ref_view_t views[] = {{3000, 2000, 500, 1}, {20000, -7000, 0, 1}, {9000, 12000, 0, 1}, {0, 0, 0, 1}};
@@ -457,7 +442,7 @@ static void composite_constant_tf_counts(void)
 static void composite_partial_slabs_match_truth(void)
 {
     int dims[3] = {9, 7, 5};
-    uint8_t *s = volume_of(dims, const_200);
+    uint8_t *s = rf_volume_of(dims, rf_const_200);
     ref_volume_t vol = {{9, 7, 5}, {1, 1.5, 1}, s};
     const ref_tf_point_t tf = {0, 0.3, 0.6, 0.9, 0.05};
     const ref_view_t views[] = {{3000, 2000, 500, 1}, {20000, -7000, 0, 1}, {9000, 12000, 0, 1}, {0, 0, 0, 1}};
@@ -534,7 +519,7 @@ static const ref_tf_point_t blob_tf[] = {
 static void render_symmetric_sphere_axis_views(void)
 {
     int dims[3] = {16, 16, 16};
-    uint8_t *s = volume_of(dims, sphere);
+    uint8_t *s = rf_volume_of(dims, sphere);
     ref_volume_t vol = {{16, 16, 16}, {1, 1, 1}, s};
     const ref_view_t views[] = {{0, 0, 0, 1.2}, {16384, 0, 0, 1.2}, {32768, 0, 0, 1.2}, {-16384, 0, 0, 1.2},
                                 {0, 16384, 0, 1.2}, {0, -16384, 0, 1.2}, {32768, 16384, 16384, 1.2}};
@@ -561,7 +546,7 @@ static void render_symmetric_sphere_axis_views(void)
 static void render_roll_turns_image(void)
 {
     int dims[3] = {20, 17, 13};
-    uint8_t *s = volume_of(dims, smooth_blob);
+    uint8_t *s = rf_volume_of(dims, smooth_blob);
     ref_volume_t vol = {{20, 17, 13}, {1, 1.25, 1.5}, s};
     enum { W = 24 };
     static double a[W * W * 3], b[W * W * 3];
@@ -584,7 +569,7 @@ static void render_roll_turns_image(void)
 static void render_random_views_in_range(void)
 {
     int dims[3] = {20, 17, 13};
-    uint8_t *s = volume_of(dims, smooth_blob);
+    uint8_t *s = rf_volume_of(dims, smooth_blob);
     ref_volume_t vol = {{20, 17, 13}, {1.5, 1, 2.5}, s};
     static double img[40 * 30 * 3];
     int background_pixels = 0, volume_pixels = 0;

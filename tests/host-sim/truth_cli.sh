@@ -3,26 +3,8 @@
 # with and without gnuplot.
 cd "$(dirname "$0")/../.." || exit 2
 sim=${BUILD:-build}/volfix-sim
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-
-ok() { echo "ok - truth-cli/$1"; }
-fail() { echo "not ok - truth-cli/$1: $2"; }
-
-# expect_error NAME PHRASE ARGS...: status 2 and exactly one stderr line containing PHRASE
-expect_error() {
-    name=$1 phrase=$2
-    shift 2
-    "$sim" "$@" >"$tmp/out" 2>"$tmp/err"
-    status=$?
-    if [ $status -ne 2 ]; then
-        fail "$name" "exit status $status, expected 2"
-    elif [ "$(wc -l <"$tmp/err")" -ne 1 ] || ! grep -qF -- "$phrase" "$tmp/err"; then
-        fail "$name" "expected one stderr line with '$phrase': $(tr '\n' '|' <"$tmp/err")"
-    else
-        ok "$name"
-    fi
-}
+suite=truth-cli program=$sim
+. tests/check.inc
 
 # compare against the truth
 if "$sim" compare phantom:sphere:24 --size 64x64 --against truth --json >"$tmp/out" 2>"$tmp/err" &&

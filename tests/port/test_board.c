@@ -1,7 +1,6 @@
 /* test_board.c: the board files in boards/ load with the values they say, and every kind of mistake in a board
  * file gives one line "FILE:LINE: what was expected" (port/board/board.c and board_check.c). Run from the repository's
  * top (run.sh does). */
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,51 +10,16 @@
 
 #include "board/board.h"
 #include "check.h"
+#include "fixtures.h"
 
 #ifdef VFP_HAVE_SDL
 #include <SDL.h>
 #endif
 
-static char tmpdir[64];
-
-static void cleanup(void)
-{
-    if (!tmpdir[0])
-        return;
-    DIR *d = opendir(tmpdir);
-    struct dirent *de;
-    while (d && (de = readdir(d))) {
-        char p[512];
-        snprintf(p, sizeof p, "%s/%s", tmpdir, de->d_name);
-        if (de->d_name[0] != '.')
-            unlink(p);
-    }
-    if (d)
-        closedir(d);
-    rmdir(tmpdir);
-}
-
-/* Write `text` to a file in a private temporary directory; returns its path (static per name). */
+/* Write `text` to a file in the tests' temporary directory (fixtures.h); returns its path. */
 static const char *write_board(const char *name, const char *text)
 {
-    static char path[256];
-    if (!tmpdir[0]) {
-        snprintf(tmpdir, sizeof tmpdir, "/tmp/volfix-board-XXXXXX");
-        if (!mkdtemp(tmpdir)) {
-            perror("mkdtemp");
-            exit(2);
-        }
-        atexit(cleanup);
-    }
-    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-    FILE *f = fopen(path, "w");
-    if (!f) {
-        perror(path);
-        exit(2);
-    }
-    fputs(text, f);
-    fclose(f);
-    return path;
+    return fx_write(name, text, NULL, 0);
 }
 
 /* Load `text` as a board file named NAME and expect exactly "PATH:LINE: ..." containing phrase (LINE 0: "PATH: "). */
@@ -64,14 +28,14 @@ static int expect_error(const char *name, const char *text, int line, const char
     vfp_board_t b;
     const char *path = write_board(name, text);
     char err[512] = "";
-    int status = vfp_board_load(&b, path, err, sizeof err);
+    vfp_status_t status = vfp_board_load(&b, path, err, sizeof err);
     char prefix[300];
     if (line > 0)
         snprintf(prefix, sizeof prefix, "%s:%d: ", path, line);
     else
         snprintf(prefix, sizeof prefix, "%s: ", path);
     snprintf(got, size, "%s", err);
-    return status == 2 && strncmp(err, prefix, strlen(prefix)) == 0 && strstr(err, phrase) != NULL &&
+    return status == VFP_ERR && strncmp(err, prefix, strlen(prefix)) == 0 && strstr(err, phrase) != NULL &&
            strchr(err, '\n') == NULL;
 }
 
@@ -569,12 +533,12 @@ static void whole_file_problems(void)
     EXPECT_ERROR("empty.board", "", 0, "no display given");
     vfp_board_t b;
     char err[512] = "";
-    CHECK_EQ(vfp_board_load(&b, "/nonexistent/x.board", err, sizeof err), 2);
+    CHECK_EQ(vfp_board_load(&b, "/nonexistent/x.board", err, sizeof err), VFP_ERR);
     CHECK_MSG(strcmp(err, "/nonexistent/x.board: cannot open: No such file or directory") == 0, "%s", err);
     err[0] = '\0';
-    write_board("dummy", "");
-    CHECK_EQ(vfp_board_load(&b, tmpdir, err, sizeof err), 2); /* a directory */
-    CHECK_MSG(strstr(err, ": cannot read: Is a directory") && strncmp(err, tmpdir, strlen(tmpdir)) == 0, "%s", err);
+    const char *dir = fx_tmpdir();
+    CHECK_EQ(vfp_board_load(&b, dir, err, sizeof err), VFP_ERR); /* a directory */
+    CHECK_MSG(strstr(err, ": cannot read: Is a directory") && strncmp(err, dir, strlen(dir)) == 0, "%s", err);
 }
 
 CHECK_CASES({"every_board_loads", every_board_loads}, {"rpi4_spi_st7789", rpi4_spi_st7789},

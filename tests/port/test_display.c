@@ -17,7 +17,7 @@
 #ifdef VFP_HAVE_SDL
 #include <SDL.h>
 
-#include "display/sdl_shared.h"
+#include "display/sdl_video.h"
 #endif
 
 static vfp_board_t board_named(const char *display, const char *device)

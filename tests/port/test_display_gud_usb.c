@@ -452,8 +452,8 @@ static void probe_and_frame(void)
     vfp_board_t b = gud_board(VF_FORMAT_RGB565, "");
     char err[256] = "", why[256] = "";
     int opened = d.ops->open(&d, &b, err, sizeof err);
-    int presented = opened ? -1 : d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
-    int partial = opened ? -1 : d.ops->present(&d, 1, 1, 2, 1, frame565, 12, err, sizeof err);
+    int presented = opened ? -1 : (int)d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
+    int partial = opened ? -1 : (int)d.ops->present(&d, 1, 1, 2, 1, frame565, 12, err, sizeof err);
     vfp_display_t opened_as = d;
     d.ops->close(&d);
     static const uint8_t state[] = STATE(GUD_PIXEL_FORMAT_RGB565);
@@ -497,7 +497,7 @@ static void xrgb8888_when_asked(void)
                                       0xff000000, 0xffffffff, 0xff123456, 0xff654321};
     int opened = d.ops->open(&d, &b, err, sizeof err);
     vf_format_t format = d.format;
-    int presented = opened ? -1 : d.ops->present(&d, 0, 0, 4, 2, frame, 16, err, sizeof err);
+    int presented = opened ? -1 : (int)d.ops->present(&d, 0, 0, 4, 2, frame, 16, err, sizeof err);
     d.ops->close(&d);
     static const uint8_t state[] = STATE(GUD_PIXEL_FORMAT_XRGB8888);
     static const uint8_t set_buffer[] = {0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 0, 0, 2, 0, 0, 0, 32, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -532,7 +532,7 @@ static void split_to_buffer(void)
     char err[256] = "", why[256] = "";
     int opened = d.ops->open(&d, &b, err, sizeof err);
     int first = transfers();
-    int presented = opened ? -1 : d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
+    int presented = opened ? -1 : (int)d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
     int too_wide = -1;
     d.ops->close(&d);
     static const uint8_t band0[] = {0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 0, 0, 1, 0, 0, 0, 8, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -554,7 +554,7 @@ static void split_to_buffer(void)
     teardown();
     CHECK_MSG(opened == 0 && presented == 0, "%s", err);
     CHECK_MSG(!differs, "%s", why);
-    CHECK_EQ(too_wide, 2);
+    CHECK_EQ(too_wide, VFP_ERR);
     CHECK_MSG(strcmp(err, "1d50:614d: a row of 4 pixels (8 bytes) is larger than the device's 6-byte buffer") == 0,
               "%s", err);
 }
@@ -575,8 +575,8 @@ static void lz4_when_smaller(void)
         frame[i] = (uint8_t)(i / 64); /* compresses well */
     int opened = d.ops->open(&d, &b, err, sizeof err);
     int first = transfers();
-    int presented = opened ? -1 : d.ops->present(&d, 0, 0, 64, 16, frame, 128, err, sizeof err);
-    int small = opened ? -1 : d.ops->present(&d, 0, 0, 1, 1, frame, 128, err, sizeof err); /* 2 bytes: raw */
+    int presented = opened ? -1 : (int)d.ops->present(&d, 0, 0, 64, 16, frame, 128, err, sizeof err);
+    int small = opened ? -1 : (int)d.ops->present(&d, 0, 0, 1, 1, frame, 128, err, sizeof err); /* 2 bytes: raw */
     d.ops->close(&d);
     pthread_mutex_lock(&fake.lock);
     transfer_t set = fake.log[first], bulk = fake.log[first + 1], set_small = fake.log[first + 2],
@@ -606,7 +606,7 @@ static void status_after_set(void)
     vfp_board_t b = gud_board(VF_FORMAT_RGB565, "");
     char err[256] = "", refused[256] = "", why[256] = "";
     int opened = d.ops->open(&d, &b, err, sizeof err);
-    int presented = opened ? -1 : d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
+    int presented = opened ? -1 : (int)d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
     d.ops->close(&d);
     static const uint8_t state[] = STATE(GUD_PIXEL_FORMAT_RGB565);
     static const uint8_t set_buffer[] = {0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 0, 0, 2, 0, 0, 0, 16, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -632,7 +632,7 @@ static void status_after_set(void)
     teardown();
     CHECK_MSG(opened == 0 && presented == 0, "%s", err);
     CHECK_MSG(!differs, "%s", why);
-    CHECK_EQ(check, 2);
+    CHECK_EQ(check, VFP_ERR);
     CHECK_MSG(strcmp(refused, "1d50:614d: STATE_CHECK failed: device status 4 (invalid parameter)") == 0, "%s",
               refused);
 }
@@ -648,13 +648,13 @@ static void full_update(void)
     static const uint8_t other[24] = {[12 + 4] = 0x99, [12 + 5] = 0x88, [12 + 6] = 0x77, [12 + 7] = 0x66};
     int opened = d.ops->open(&d, &b, err, sizeof err);
     int first = transfers();
-    int full = opened ? -1 : d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
-    int part = opened ? -1 : d.ops->present(&d, 2, 1, 2, 1, other, 12, err, sizeof err);
+    int full = opened ? -1 : (int)d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
+    int part = opened ? -1 : (int)d.ops->present(&d, 2, 1, 2, 1, other, 12, err, sizeof err);
     pthread_mutex_lock(&fake.lock);
     fake.fail_bulk = 1;
     pthread_mutex_unlock(&fake.lock);
-    int broken = opened ? -1 : d.ops->present(&d, 0, 0, 1, 1, frame565, 12, failed, sizeof failed);
-    int after = opened ? -1 : d.ops->present(&d, 0, 0, 1, 1, frame565, 12, err, sizeof err);
+    int broken = opened ? -1 : (int)d.ops->present(&d, 0, 0, 1, 1, frame565, 12, failed, sizeof failed);
+    int after = opened ? -1 : (int)d.ops->present(&d, 0, 0, 1, 1, frame565, 12, err, sizeof err);
     d.ops->close(&d);
     static const uint8_t pixels[] = {0x00, 0xf8, 0xe0, 0x07, 0x1f, 0x00, 0xff, 0xff,
                                      0x00, 0x00, 0x34, 0x12, 0x10, 0x84, 0xcd, 0xab};
@@ -668,7 +668,7 @@ static void full_update(void)
     int differs = conversation_is(first, expected, sizeof expected / sizeof expected[0], why, sizeof why);
     teardown();
     CHECK_MSG(opened == 0 && full == 0 && part == 0 && after == 0, "%s", err);
-    CHECK_EQ(broken, 2);
+    CHECK_EQ(broken, VFP_ERR);
     CHECK_MSG(strstr(failed, "1d50:614d: bulk transfer failed: ") != NULL, "%s", failed);
     CHECK_MSG(!differs, "%s", why);
 }
@@ -683,14 +683,14 @@ static void stall_gives_status(void)
     char err[256] = "", why[256] = "";
     int opened = d.ops->open(&d, &b, err, sizeof err);
     int first = transfers();
-    int presented = opened ? -1 : d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
+    int presented = opened ? -1 : (int)d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
     static const uint8_t set_buffer[] = {0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 0, 0, 2, 0, 0, 0, 16, 0, 0, 0, 0, 0, 0, 0, 0};
     static const expect_t expected[] = {OUT(GUD_REQ_SET_BUFFER, set_buffer), IN(GUD_REQ_GET_STATUS, 0, 1)};
     int differs = conversation_is(first, expected, 2, why, sizeof why);
     d.ops->close(&d);
     teardown();
     CHECK_MSG(opened == 0, "%s", err);
-    CHECK_EQ(presented, 2);
+    CHECK_EQ(presented, VFP_ERR);
     CHECK_MSG(strcmp(err, "1d50:614d: SET_BUFFER stalled: device status 4 (invalid parameter)") == 0, "%s", err);
     CHECK_MSG(!differs, "%s", why);
 }
@@ -704,10 +704,10 @@ static void unplug_and_replug(void)
     vfp_board_t b = gud_board(VF_FORMAT_RGB565, "");
     char err[256] = "", lost_err[256] = "", missing_err[256] = "";
     int opened = d.ops->open(&d, &b, err, sizeof err);
-    int before = opened ? -1 : d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
+    int before = opened ? -1 : (int)d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
     unplug();
-    int after = opened ? -1 : d.ops->present(&d, 0, 0, 4, 2, frame565, 12, lost_err, sizeof lost_err);
-    int again = opened ? -1 : d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
+    int after = opened ? -1 : (int)d.ops->present(&d, 0, 0, 4, 2, frame565, 12, lost_err, sizeof lost_err);
+    int again = opened ? -1 : (int)d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
     int sent = transfers();
     d.ops->close(&d);
     int sent_by_close = transfers() - sent;
@@ -718,7 +718,7 @@ static void unplug_and_replug(void)
     plug_in(0);
     int reopened = d.ops->open(&d, &b, err, sizeof err);
     int first = transfers();
-    int presented = reopened ? -1 : d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
+    int presented = reopened ? -1 : (int)d.ops->present(&d, 0, 0, 4, 2, frame565, 12, err, sizeof err);
     int frames = transfers() - first;
     d.ops->close(&d);
     teardown();
@@ -727,7 +727,7 @@ static void unplug_and_replug(void)
     CHECK_MSG(strstr(lost_err, "1d50:614d: display gone (SET_BUFFER: ") != NULL, "%s", lost_err);
     CHECK_EQ(again, VFP_DISPLAY_LOST);
     CHECK_EQ(sent_by_close, 0);
-    CHECK_EQ(missing, 2);
+    CHECK_EQ(missing, VFP_ERR);
     CHECK_MSG(strcmp(missing_err, "no GUD display found (VID:PID 1d50:614d or 16d0:10a9): is it plugged in?") == 0,
               "%s", missing_err);
     CHECK_MSG(reopened == 0 && presented == 0, "%s", err);
@@ -750,12 +750,12 @@ static void missing_or_other_id(void)
     int second = d.ops->open(&d, &b, err_second, sizeof err_second);
     d.ops->close(&d);
     teardown();
-    CHECK_EQ(missing, 2);
+    CHECK_EQ(missing, VFP_ERR);
     CHECK_MSG(strcmp(err, "no GUD display found (VID:PID 1d50:614d or 16d0:10a9): is it plugged in?") == 0, "%s",
               err);
-    CHECK_EQ(other, 2);
+    CHECK_EQ(other, VFP_ERR);
     CHECK_MSG(strcmp(err_id, "no GUD display found (VID:PID 1d50:614d): is it plugged in?") == 0, "%s", err_id);
-    CHECK_EQ(syntax, 2);
+    CHECK_EQ(syntax, VFP_ERR);
     CHECK_MSG(strcmp(err_syntax, "display.device '1d50-614d': expected VID:PID in hex, like 1d50:614d") == 0, "%s",
               err_syntax);
     CHECK_MSG(second == 0, "the second ID: %s", err_second);
@@ -773,7 +773,7 @@ static void bad_magic(void)
     int differs = conversation_is(0, expected, 1, why, sizeof why);
     d.ops->close(&d);
     teardown();
-    CHECK_EQ(opened, 2);
+    CHECK_EQ(opened, VFP_ERR);
     CHECK(d.priv == NULL);
     CHECK_MSG(strcmp(err, "1d50:614d: not a GUD display: descriptor magic 0xdeadbeef (expected 0x1d50614d)") == 0,
               "%s", err);
@@ -792,10 +792,10 @@ static void no_format_or_connector(void)
     fake.none_connected = 1;
     int no_connector = d.ops->open(&d, &b, err_connector, sizeof err_connector);
     teardown();
-    CHECK_EQ(no_format, 2);
+    CHECK_EQ(no_format, VFP_ERR);
     CHECK_MSG(strcmp(err, "1d50:614d: the display takes neither RGB565 nor XRGB8888 (it lists 2 other formats)") ==
               0, "%s", err);
-    CHECK_EQ(no_connector, 2);
+    CHECK_EQ(no_connector, VFP_ERR);
     CHECK_MSG(strcmp(err_connector, "1d50:614d: none of its 2 connectors has a display connected") == 0, "%s",
               err_connector);
 }

@@ -297,7 +297,7 @@ static void missing_chip_label(void)
     const vfp_input_ops_t *ops = vfp_input_find("gpiod", &b, err, sizeof err);
     CHECK_MSG(ops, "%s", err);
     vfp_input_t in;
-    CHECK_EQ(ops->open(&in, &b, NULL, err, sizeof err), 2);
+    CHECK_EQ(ops->open(&in, &b, NULL, err, sizeof err), VFP_ERR);
     CHECK_MSG(strncmp(err, "gpio chip 'no-such-chip-label' not found (", 42) == 0, "%s", err);
     CHECK(in.priv == NULL);
     ops->close(&in); /* safe on an input that never opened */

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "fixtures.h"
 #include "input/input.h"
 #include "input/input_backends.h" /* the seam in port/input/input_script.c */
 
@@ -35,7 +36,7 @@ static int load(vfp_input_t *in, const char *text, char *err, size_t errlen)
     do { \
         vfp_input_t in_; \
         char err_[256]; \
-        CHECK_EQ(load(&in_, text, err_, sizeof err_), 2); \
+        CHECK_EQ(load(&in_, text, err_, sizeof err_), VFP_ERR); \
         CHECK_MSG(strncmp(err_, phrase, strlen(phrase)) == 0, "expected '%s', got '%s'", phrase, err_); \
         CHECK(in_.priv == NULL); \
     } while (0)
@@ -156,20 +157,13 @@ static void bad_lines(void)
     b.knob_count = 0;
     vfp_input_t in;
     char err[256];
-    CHECK_EQ(vfp_script_load_string(&in, &b, "0 turn 0 1", "k.script", 0, err, sizeof err), 2);
+    CHECK_EQ(vfp_script_load_string(&in, &b, "0 turn 0 1", "k.script", 0, err, sizeof err), VFP_ERR);
     CHECK_MSG(strcmp(err, "k.script:1: turn: the board has no knobs") == 0, "%s", err);
 }
 
 static void open_from_file(void)
 {
-    char dir[] = "/tmp/volfix-script-XXXXXX";
-    CHECK(mkdtemp(dir));
-    char path[256];
-    snprintf(path, sizeof path, "%s/demo.script", dir);
-    FILE *f = fopen(path, "w");
-    CHECK(f);
-    fputs("0 turn 1 4\n20 press 0\n", f);
-    fclose(f);
+    const char *path = fx_write("demo.script", "0 turn 1 4\n20 press 0\n", NULL, 0);
 
     vfp_board_t b = board_2x2();
     char err[256] = "";
@@ -181,10 +175,8 @@ static void open_from_file(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     uint64_t before = (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
-    int status = ops->open(&in, &b, path, err, sizeof err);
-    unlink(path);
-    rmdir(dir);
-    CHECK_MSG(status == 0, "%s", err);
+    vfp_status_t status = ops->open(&in, &b, path, err, sizeof err);
+    CHECK_MSG(status == VFP_OK, "%s", err);
     uint64_t t0 = ops->deadline_ns(&in);
     CHECK(t0 >= before);
     vfp_event_t ev[4];
@@ -194,10 +186,10 @@ static void open_from_file(void)
     ops->close(&in);
 
     /* the board's script when no --script; a missing file is named */
-    CHECK_EQ(ops->open(&in, &b, NULL, err, sizeof err), 2);
+    CHECK_EQ(ops->open(&in, &b, NULL, err, sizeof err), VFP_ERR);
     CHECK_MSG(strcmp(err, "/nonexistent.script: cannot open: No such file or directory") == 0, "%s", err);
     b.script[0] = '\0';
-    CHECK_EQ(ops->open(&in, &b, "", err, sizeof err), 2);
+    CHECK_EQ(ops->open(&in, &b, "", err, sizeof err), VFP_ERR);
     CHECK_MSG(strcmp(err, "test.board: input = script needs a script (input.script in the board file, or --script "
                           "FILE)") == 0, "%s", err);
 }

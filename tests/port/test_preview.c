@@ -71,17 +71,17 @@ static void downsample_refuses_what_it_cannot_do(void)
     vfp_volume_t vol;
     char err[VFP_ERR_LEN];
     o.downsample = 3; /* 3 voxels along z become 1: below the core's smallest side */
-    CHECK(vfp_volume_load(&vol, path, &o, err, sizeof err) == 2);
+    CHECK(vfp_volume_load(&vol, path, &o, err, sizeof err) == VFP_ERR);
     CHECK_MSG(strstr(err, "d.raw: 3 voxels along z are too few to downsample 3 times (expected at least 4)"), "%s",
               err);
     o.downsample = 9;
-    CHECK(vfp_volume_load(&vol, path, &o, err, sizeof err) == 2);
+    CHECK(vfp_volume_load(&vol, path, &o, err, sizeof err) == VFP_ERR);
     CHECK_MSG(strstr(err, "downsample factor 9 (expected 1 to 8)"), "%s", err);
     o.downsample = 1; /* 1: as stored */
     CHECK(vfp_volume_load(&vol, path, &o, err, sizeof err) == 0);
     CHECK_EQ(vol.core.dims[0], 5);
     vfp_volume_t small;
-    CHECK(vfp_volume_downsampled(&small, &vol, 4, err, sizeof err) == 2);
+    CHECK(vfp_volume_downsampled(&small, &vol, 4, err, sizeof err) == VFP_ERR);
     CHECK(small.data == NULL);
     vfp_volume_free(&vol);
 }

@@ -9,10 +9,10 @@
 #include "io/tf.h"
 #include "volume_fixtures.h" /* fx_write: files in a private temporary directory */
 
-static int load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
+static vfp_status_t load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
 {
     err[0] = 0;
-    int rc = vfp_tf_load(tf, path, err, errlen);
+    vfp_status_t rc = vfp_tf_load(tf, path, err, errlen);
     if (getenv("VOLFIX_SHOW_ERRORS"))
         printf("# %s\n", rc ? err : "loaded");
     return rc;
@@ -66,7 +66,7 @@ static void long_lines(void)
 
     snprintf(text + n + 900, sizeof text - (size_t)n - 900, "\n0 0 0 0 0\nbad\n");
     p = fx_write("long-bad.tf", text, NULL, 0);
-    CHECK_EQ(load(&tf, p, err, sizeof err), 2);
+    CHECK_EQ(load(&tf, p, err, sizeof err), VFP_ERR);
     char want[600];
     snprintf(want, sizeof want, "%s:3: expected a control point 'scalar r g b a' (five numbers)", p);
     CHECK_MSG(strcmp(err, want) == 0, "got '%s', expected '%s'", err, want);
@@ -78,7 +78,7 @@ static void nul_byte(void)
     const char *p = fx_write("nul.tf", "0 0 0 0 0\n1 1 1 1 1", "\0 # the rest\n", 14);
     vfp_tf_t tf;
     char err[VFP_ERR_LEN];
-    CHECK_EQ(load(&tf, p, err, sizeof err), 2);
+    CHECK_EQ(load(&tf, p, err, sizeof err), VFP_ERR);
     char want[600];
     snprintf(want, sizeof want, "%s:2: expected text, found a NUL byte", p);
     CHECK_MSG(strcmp(err, want) == 0, "got '%s', expected '%s'", err, want);

@@ -283,11 +283,11 @@ static void error_null_arguments(void)
 {
     vfp_volume_t vol;
     char err[VFP_ERR_LEN];
-    CHECK_EQ(vfp_volume_load(&vol, "", NULL, err, sizeof err), 2);
+    CHECK_EQ(vfp_volume_load(&vol, "", NULL, err, sizeof err), VFP_ERR);
     CHECK(strstr(err, "no volume file") != NULL);
-    CHECK_EQ(vfp_volume_load(&vol, NULL, NULL, err, sizeof err), 2);
-    CHECK_EQ(vfp_volume_load(NULL, "x", NULL, err, sizeof err), 2);
-    CHECK_EQ(vfp_volume_load(&vol, "", NULL, NULL, 0), 2); /* no err buffer: still no crash */
+    CHECK_EQ(vfp_volume_load(&vol, NULL, NULL, err, sizeof err), VFP_ERR);
+    CHECK_EQ(vfp_volume_load(NULL, "x", NULL, err, sizeof err), VFP_ERR);
+    CHECK_EQ(vfp_volume_load(&vol, "", NULL, NULL, 0), VFP_ERR); /* no err buffer: still no crash */
     vfp_volume_free(NULL);
 }
 

@@ -1,5 +1,5 @@
 /*
- * volume_fixtures.h: small volume files written at test time into a private temporary directory (removed at exit),
+ * volume_fixtures.h: small volume files written at test time into the tests' temporary directory (fixtures.h),
  * and the checks the volume tests share. Header-only so that each test program stays one file; every function is
  * static inline so a test that does not use one gets no warning.
  */
@@ -15,6 +15,7 @@
 #include <zlib.h>
 
 #include "check.h"
+#include "fixtures.h"
 #include "io/volume.h"
 
 /* The fixture volume: 3 x 4 x 5 voxels, distinct values in every byte, so a swapped or shifted byte shows. */
@@ -22,75 +23,6 @@
 #define FX_Y 4
 #define FX_Z 5
 #define FX_COUNT (FX_X * FX_Y * FX_Z)
-#define FX_MAX_FILES 512
-
-static char fx_dir[64];
-static char *fx_files[FX_MAX_FILES]; /* created paths, removed in reverse order at exit (directories last) */
-static int fx_nfiles;
-
-static inline void fx_cleanup(void)
-{
-    for (int i = fx_nfiles - 1; i >= 0; i--) {
-        if (unlink(fx_files[i]) != 0)
-            rmdir(fx_files[i]);
-        free(fx_files[i]);
-    }
-    if (fx_dir[0])
-        rmdir(fx_dir);
-}
-
-static inline void fx_remember(const char *path)
-{
-    for (int i = 0; i < fx_nfiles; i++)
-        if (strcmp(fx_files[i], path) == 0)
-            return;
-    if (fx_nfiles < FX_MAX_FILES)
-        fx_files[fx_nfiles++] = strdup(path);
-}
-
-/* A path inside the temporary directory; eight rotating buffers, so a few can be alive at once. */
-static inline const char *fx_path(const char *name)
-{
-    static char bufs[8][512];
-    static int next;
-    if (!fx_dir[0]) {
-        snprintf(fx_dir, sizeof fx_dir, "/tmp/volfix-test-XXXXXX");
-        if (!mkdtemp(fx_dir)) {
-            perror("mkdtemp");
-            exit(1);
-        }
-        atexit(fx_cleanup);
-    }
-    char *b = bufs[next++ % 8];
-    snprintf(b, sizeof bufs[0], "%s/%s", fx_dir, name);
-    return b;
-}
-
-static inline const char *fx_mkdir(const char *name)
-{
-    const char *p = fx_path(name);
-    mkdir(p, 0700);
-    fx_remember(p);
-    return p;
-}
-
-/* Writes text (may be NULL) followed by n bytes of data; returns the file's path. */
-static inline const char *fx_write(const char *name, const char *text, const void *data, size_t n)
-{
-    const char *p = fx_path(name);
-    FILE *f = fopen(p, "wb");
-    if (!f) {
-        perror(p);
-        exit(1);
-    }
-    if (text)
-        fputs(text, f);
-    if (n)
-        fwrite(data, 1, n, f);
-    fclose(f);
-    fx_remember(p);
-    return p;
-}
 
 /* gzip (not zlib) bytes of data, as gzip(1) and NRRD writers make them; caller frees. */
 static inline unsigned char *fx_gzip_bytes(const void *data, size_t n, size_t *out_n)
@@ -121,7 +53,6 @@ static inline const char *fx_write_gz(const char *name, const void *data, size_t
         fprintf(stderr, "gzwrite %s failed\n", p);
         exit(1);
     }
-    fx_remember(p);
     return p;
 }
 
@@ -200,10 +131,10 @@ static inline void fx_expect_error(const char *spec, const vfp_load_opts_t *opts
     vfp_volume_t vol;
     char err[VFP_ERR_LEN];
     memset(&vol, 0x5a, sizeof vol);
-    int rc = vfp_volume_load(&vol, spec, opts, err, sizeof err);
+    vfp_status_t rc = vfp_volume_load(&vol, spec, opts, err, sizeof err);
     if (getenv("VOLFIX_SHOW_ERRORS"))
         printf("# %s\n", err);
-    CHECK_MSG(rc == 2, "load of %s returned %d, expected 2", spec, rc);
+    CHECK_MSG(rc == VFP_ERR, "load of %s returned %d, expected VFP_ERR", spec, rc);
     CHECK_MSG(strstr(err, name) != NULL, "error '%s' does not name '%s'", err, name);
     CHECK_MSG(strstr(err, phrase) != NULL, "error '%s' lacks '%s'", err, phrase);
     CHECK_MSG(strchr(err, '\n') == NULL, "error '%s' is more than one line", err);
@@ -211,11 +142,11 @@ static inline void fx_expect_error(const char *spec, const vfp_load_opts_t *opts
 }
 
 /* Same for the parsers, which name the option instead of a file. */
-static inline void fx_expect_text(int rc, const char *err, const char *phrase1, const char *phrase2)
+static inline void fx_expect_text(vfp_status_t rc, const char *err, const char *phrase1, const char *phrase2)
 {
     if (getenv("VOLFIX_SHOW_ERRORS"))
         printf("# %s\n", err);
-    CHECK_EQ(rc, 2);
+    CHECK_EQ(rc, VFP_ERR);
     CHECK_MSG(strstr(err, phrase1) != NULL, "error '%s' lacks '%s'", err, phrase1);
     CHECK_MSG(strstr(err, phrase2) != NULL, "error '%s' lacks '%s'", err, phrase2);
 }

@@ -6,15 +6,13 @@
 cd "$(dirname "$0")/../.." || exit 2
 build=${BUILD:-build}
 viewer=$build/volfix sim=$build/volfix-sim
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+suite=viewer-sdl
+. tests/check.inc
 # Under AddressSanitizer (make SAN=1): SDL's X11 and D-Bus libraries keep allocations to the end that
 # LeakSanitizer reports as leaks, some from libraries already unloaded (no name to suppress). The viewer's own
 # memory is leak-checked by viewer.sh, whose png display runs the same loop without SDL.
 export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
 
-ok() { echo "ok - viewer-sdl/$1"; }
-fail() { echo "not ok - viewer-sdl/$1: $2"; }
 
 for tool in xvfb-run xdotool import convert; do
     if ! command -v $tool >/dev/null; then

@@ -9,11 +9,8 @@ build=${BUILD:-build}
 viewer=$build/volfix sim=$build/volfix-sim
 data=${VOLFIX_DATA:-../shared/data}
 board=boards/host-headless.board
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-
-ok() { echo "ok - viewer/$1"; }
-fail() { echo "not ok - viewer/$1: $2"; }
+suite=viewer program=$viewer
+. tests/check.inc
 
 # frames_match NAME VOLUME DIR LOG: every frame in LOG is DIR/frame-N.png and equals volfix-sim render's picture
 frames_match() {
@@ -147,21 +144,6 @@ else
 fi
 
 # 7. Bad input: status 2 and one line that says what was wrong.
-expect_error() {
-    name=$1 phrase=$2
-    shift 2
-    "$viewer" "$@" >"$tmp/out" 2>"$tmp/err"
-    status=$?
-    if [ $status -ne 2 ]; then
-        fail "$name" "exit status $status, expected 2 ($(head -n 1 "$tmp/err"))"
-    elif [ "$(wc -l <"$tmp/err")" -ne 1 ]; then
-        fail "$name" "expected one line on stderr: $(tr '\n' '|' <"$tmp/err")"
-    elif ! grep -qF -- "$phrase" "$tmp/err"; then
-        fail "$name" "stderr lacks '$phrase': $(cat "$tmp/err")"
-    else
-        ok "$name"
-    fi
-}
 expect_error "no board" "volfix: no board given" phantom:sphere:8
 expect_error "no volume" "volfix: no volume given" --board "$board"
 expect_error "missing board file" "boards/nope.board" --board boards/nope.board phantom:sphere:8
