@@ -508,5 +508,7 @@ static inline vfi_table_out_t table_out(const vf_renderer_t *r)
     out.q15 = bits16 ? r->table : NULL;
     out.u8 = bits16 ? NULL : r->table;
     out.grid_bits = r->params.table_bits == 10 || r->params.table_bits == 12 ? r->params.table_bits : 0;
+    out.lit_q15 = NULL; /* no front-weighted tables */
+    out.lit_u8 = NULL;
     return out;
 }
