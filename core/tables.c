@@ -78,6 +78,8 @@ static inline vfi_seg_t add_behind(const vfi_seg_t *x, uint64_t t, const vfi_seg
 static VF_ALWAYS_INLINE void bruteforce_body(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out_t out,
                                              bool lit)
 {
+    if (!VF_LIT_TABLES)
+        lit = false;
     const uint32_t n = cls->n;
     for (uint32_t f = 0; f < n; f++)
         for (uint32_t b = 0; b < n; b++) {
@@ -272,8 +274,8 @@ size_t vf_table_scratch_bytes(uint32_t n)
 {
     if (n < VF_MIN_TABLE || n > VF_MAX_TABLE)
         return 0;
-    /* the lit build's scratch, which holds the others' (tables.h) */
-    return VFI_ALIGN + vfi_classify_bytes(n) + vfi_table_scratch_lit_bytes(n);
+    /* the lit build's scratch, which holds the others' (tables.h), in builds with it */
+    return VFI_ALIGN + vfi_classify_bytes(n) + (VF_LIT_TABLES ? vfi_table_scratch_lit_bytes(n) : vfi_table_scratch_bytes(n));
 }
 
 static vf_status_t build(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, int which, vf_arena_t *arena,
@@ -328,7 +330,7 @@ vf_status_t vf_table_preint_lit(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16
         return VF_ERR_NULL;
     if ((unsigned)builder >= VF_BUILDER_COUNT)
         return VF_ERR_ARG;
-    if (builder == VF_BUILDER_BRUTEFORCE && !VF_TABLE_ORACLE)
+    if ((builder == VF_BUILDER_BRUTEFORCE && !VF_TABLE_ORACLE) || !VF_LIT_TABLES)
         return VF_ERR_UNSUPPORTED;
     return build(tf, n, slab_q16, 1 + (int)builder, scratch, out, lit_out);
 }

@@ -26,9 +26,11 @@ typedef struct vfi_table_out {
     uint8_t *lit_u8;
 } vfi_table_out_t;
 
+/* Whether a builder is asked for lit outputs: never in builds without them (vf_config.h, VF_LIT_TABLES), whose
+ * lit code is then dead and left out. */
 static inline bool vfi_table_out_lit(vfi_table_out_t out)
 {
-    return out.lit_q15 || out.lit_u8;
+    return VF_LIT_TABLES && (out.lit_q15 || out.lit_u8);
 }
 
 /* What compositing reads: one table (point or 2D) in one of the two formats, and the lut correction. */
