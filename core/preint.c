@@ -403,34 +403,57 @@ static inline void store_lit_window(vfi_table_out_t out, size_t up, size_t down,
     }
 }
 
-/* The front-weighted values of window x: the suffix in front of the prefix seen from the front (up), the prefix
- * in front of the suffix from the back (down). sf: the suffix's moments about its front (the window's front),
- * sb about its back; pf: the prefix's about its front, pb about its back (the window's back); s_cb, p_cf: the
- * suffix's colour seen from the back and the prefix's from the front (Q.30); ns, np their lengths. Joined, a run
- * behind the other has its moments taken np or ns intervals deeper and seen through the other's transmittance. */
-static VF_ALWAYS_INLINE void lit_window(const diagonal_t *d, const window_t *x, const uint64_t sf[4],
-                                        const uint64_t sb[4], const uint32_t s_cb[3], uint32_t st,
-                                        const uint64_t pf[4], const uint64_t pb[4], const uint32_t p_cf[3],
-                                        uint32_t pt, uint32_t ns, uint32_t np, bool grey, size_t up, size_t down)
+/* Entries up and down's front-weighted values of a window of nothing seen: 0. */
+static inline void store_nothing_seen(vfi_table_out_t out, size_t up, size_t down)
+{
+    const uint64_t zero = HALF_Q15_IN_Q60, e[8] = {zero, zero, zero, zero, zero, zero, zero, zero};
+    store_lit_window(out, up, down, e);
+}
+
+/* A window's moments as joined, about its front (up[4]: the up entry's r, g, b, a) and its back (down[4]). */
+typedef struct window_moments {
+    uint64_t up[4], down[4];
+} window_moments_t;
+
+/* Window x's front-weighted values from its moments m, stored. */
+static VF_ALWAYS_INLINE void store_lit_moments(const diagonal_t *d, const window_t *x, const window_moments_t *m,
+                                               bool grey, size_t up, size_t down)
 {
     const uint64_t recip = d->recip, cu[3] = {x->r, x->g, x->b}, cd[3] = {x->br, x->bg, x->bb};
     uint64_t e[8];
     for (int c = 0; c < (grey ? 1 : 3); c++) {
-        const uint64_t mu = sf[c] + ((st * (pf[c] + ns * q22_of_q30(p_cf[c])) + HALF_Q30) >> 30);
-        const uint64_t md = pb[c] + ((pt * (sb[c] + np * q22_of_q30(s_cb[c])) + HALF_Q30) >> 30);
-        e[c] = less_moment(cu[c], mu, recip);
-        e[4 + c] = less_moment(cd[c], md, recip);
+        e[c] = less_moment(cu[c], m->up[c], recip);
+        e[4 + c] = less_moment(cd[c], m->down[c], recip);
     }
     if (grey) {
         e[1] = e[2] = e[0];
         e[5] = e[6] = e[4];
     }
-    const uint64_t st64 = st, pt64 = pt;
-    const uint64_t mu = sf[3] + ((st64 * (pf[3] + ns * q22_of_q30(ONE_Q30 - pt)) + HALF_Q30) >> 30);
-    const uint64_t md = pb[3] + ((pt64 * (sb[3] + np * q22_of_q30(ONE_Q30 - st)) + HALF_Q30) >> 30);
-    e[3] = less_moment(x->a, mu, recip);
-    e[7] = less_moment(x->a, md, recip);
+    e[3] = less_moment(x->a, m->up[3], recip);
+    e[7] = less_moment(x->a, m->down[3], recip);
     store_lit_window(d->out, up, down, e);
+}
+
+/* The front-weighted values of window x: the suffix in front of the prefix seen from the front (up), the prefix
+ * in front of the suffix from the back (down). sf: the suffix's moments about its front (the window's front),
+ * sb about its back; pf: the prefix's about its front, pb about its back (the window's back); s_cb, p_cf: the
+ * suffix's colour seen from the back and the prefix's from the front (Q.30); ns, np their lengths. Joined, a run
+ * behind the other has its moments taken np or ns intervals deeper and seen through the other's transmittance.
+ * The moments into *m. */
+static VF_ALWAYS_INLINE void lit_window(const diagonal_t *d, const window_t *x, const uint64_t sf[4],
+                                        const uint64_t sb[4], const uint32_t s_cb[3], uint32_t st,
+                                        const uint64_t pf[4], const uint64_t pb[4], const uint32_t p_cf[3],
+                                        uint32_t pt, uint32_t ns, uint32_t np, bool grey, size_t up, size_t down,
+                                        window_moments_t *m)
+{
+    const uint64_t st64 = st, pt64 = pt;
+    for (int c = 0; c < (grey ? 1 : 3); c++) {
+        m->up[c] = sf[c] + ((st64 * (pf[c] + ns * q22_of_q30(p_cf[c])) + HALF_Q30) >> 30);
+        m->down[c] = pb[c] + ((pt64 * (sb[c] + np * q22_of_q30(s_cb[c])) + HALF_Q30) >> 30);
+    }
+    m->up[3] = sf[3] + ((st64 * (pf[3] + ns * q22_of_q30(ONE_Q30 - pt)) + HALF_Q30) >> 30);
+    m->down[3] = pb[3] + ((pt64 * (sb[3] + np * q22_of_q30(ONE_Q30 - st)) + HALF_Q30) >> 30);
+    store_lit_moments(d, x, m, grey, up, down);
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
@@ -583,8 +606,9 @@ static VF_ALWAYS_INLINE void block_dense_body(const diagonal_t *d, uint32_t s0, 
             const vfi_suffix_lit_t *sl = d->suf_lit + (s - d->suf);
             const uint32_t p_cf[3] = {(uint32_t)(pre.cr >> 30), (uint32_t)(pre.cg >> 30), (uint32_t)(pre.cb >> 30)};
             const uint32_t np = (uint32_t)(v - prefix);
+            window_moments_t wm;
             lit_window(d, &x, sl->front, sl->back, s->back, s->t, pm.front, pm.back, p_cf, pre.t, r - np, np, grey,
-                       up, down);
+                       up, down, &wm);
         }
         if (s == last)
             break;
@@ -621,10 +645,11 @@ static void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end,
 /* block_sparse's window f, front-weighted: the suffix from the first visible interval at or after f (listed at k,
  * none when k = k_hi) has its front moments taken from there to f; the prefix its back moments from the back of
  * the interval that joined it last (p_back) to the window's back. The positions count every interval, seen or
- * not: that is why no window's lit values repeat the last one's, where its main ones do. */
-static VF_ALWAYS_INLINE void sparse_lit_window(const diagonal_t *d, const window_t *x, uint32_t s0, uint32_t f,
+ * not: that is why no window's lit values repeat the last one's, where its main ones do. The moments into *m;
+ * a window of nothing seen (both runs' transmittance 1, so every sum exactly 0) stores zeros and returns false. */
+static VF_ALWAYS_INLINE bool sparse_lit_window(const diagonal_t *d, const window_t *x, uint32_t s0, uint32_t f,
                                                uint32_t k_hi, const pair_t *pre, const moments_t *pm,
-                                               uint32_t p_back, size_t up, size_t down)
+                                               uint32_t p_back, size_t up, size_t down, window_moments_t *m)
 {
     static const uint32_t no_colour[3] = {0, 0, 0};
     const uint32_t r = d->r, k = d->first_visible[f];
@@ -634,16 +659,25 @@ static VF_ALWAYS_INLINE void sparse_lit_window(const diagonal_t *d, const window
     uint32_t st = ONE_Q30;
     if (k < k_hi) {
         const vfi_suffix_t *s = &d->suf[k];
-        const vfi_suffix_lit_t *sl = &d->suf_lit[k];
-        const uint64_t delta = d->visible[k] - f;
-        for (int c = 0; c < 3; c++) /* block_sparse keeps the colour as (C << 30) + the half */
-            sf[c] = sl->front[c] + delta * q22_of_q30((s->front_q60[c] - HALF_Q15_IN_Q60) >> 30);
-        sf[3] = sl->front[3] + delta * q22_of_q30(ONE_Q30 - s->t);
-        sb = sl->back;
-        s_cb = s->back;
         st = s->t;
-    } else {
+        if (st != ONE_Q30) {
+            const vfi_suffix_lit_t *sl = &d->suf_lit[k];
+            const uint64_t delta = d->visible[k] - f;
+            for (int c = 0; c < 3; c++) /* block_sparse keeps the colour as (C << 30) + the half */
+                sf[c] = sl->front[c] + delta * q22_of_q30((s->front_q60[c] - HALF_Q15_IN_Q60) >> 30);
+            sf[3] = sl->front[3] + delta * q22_of_q30(ONE_Q30 - st);
+            sb = sl->back;
+            s_cb = s->back;
+        }
+    }
+    if (st == ONE_Q30) {
+        if (pre->t == ONE_Q30) {
+            store_nothing_seen(d->out, up, down);
+            return false;
+        }
         sf[0] = sf[1] = sf[2] = sf[3] = 0;
+        sb = sf;
+        s_cb = no_colour;
     }
     const uint64_t eps = f + r - 1 - p_back;
     pb[0] = pm->back[0] + eps * q22_of_q30(pre->br);
@@ -651,7 +685,24 @@ static VF_ALWAYS_INLINE void sparse_lit_window(const diagonal_t *d, const window
     pb[2] = pm->back[2] + eps * q22_of_q30(pre->bb);
     pb[3] = pm->back[3] + eps * q22_of_q30(ONE_Q30 - pre->t);
     const uint32_t p_cf[3] = {pre->r, pre->g, pre->b};
-    lit_window(d, x, sf, sb, s_cb, st, pm->front, pb, p_cf, pre->t, s0 + r - f, f - s0, false, up, down);
+    lit_window(d, x, sf, sb, s_cb, st, pm->front, pb, p_cf, pre->t, s0 + r - f, f - s0, false, up, down, m);
+    return true;
+}
+
+/* The next window of a run block_sparse copies (the interval it drops and the one it adds both seen through): every
+ * emission one interval nearer its front and one farther from its back, m->up less the colours and opacity seen
+ * from the front, m->down more those from the back (not below 0: the rounding of those may take a little more
+ * than the moment holds, where all of it is next to the front). */
+static VF_ALWAYS_INLINE void sparse_lit_next(const diagonal_t *d, const window_t *x, window_moments_t *m,
+                                             size_t up, size_t down)
+{
+    const uint64_t cu[4] = {x->r, x->g, x->b, x->a}, cd[4] = {x->br, x->bg, x->bb, x->a};
+    for (int c = 0; c < 4; c++) {
+        const uint64_t u = (cu[c] - HALF_Q15_IN_Q60 + HALF_Q22_IN_Q60) >> 38; /* Q.60 with the half, to Q.22 */
+        m->up[c] = m->up[c] > u ? m->up[c] - u : 0;
+        m->down[c] += (cd[c] - HALF_Q15_IN_Q60 + HALF_Q22_IN_Q60) >> 38;
+    }
+    store_lit_moments(d, x, m, false, up, down);
 }
 
 /* The same with invisible intervals (t = 1; any interval with t = 1 changes no bit of a composite, so skipping
@@ -705,14 +756,16 @@ static VF_ALWAYS_INLINE void block_sparse_body(const diagonal_t *d, uint32_t s0,
                                 ((uint64_t)pre.br << 30) + HALF_Q15_IN_Q60, ((uint64_t)pre.bg << 30) + HALF_Q15_IN_Q60,
                                 ((uint64_t)pre.bb << 30) + HALF_Q15_IN_Q60, pre.t, false);
         store_window(out, q15, up, down, &x);
-        if (lit)
-            sparse_lit_window(d, &x, s0, f, k_hi, &pre, &pm, p_back, up, down);
+        window_moments_t wm;
+        const bool seen = lit && sparse_lit_window(d, &x, s0, f, k_hi, &pre, &pm, p_back, up, down, &wm);
         for (; f < end && iv[f].t == ONE_Q30 && iv[f + r].t == ONE_Q30; f++) {
             up += n + 1;
             down += n + 1;
             copy_pair(out, up, down, n + 1);
-            if (lit)
-                sparse_lit_window(d, &x, s0, f + 1, k_hi, &pre, &pm, p_back, up, down);
+            if (seen)
+                sparse_lit_next(d, &x, &wm, up, down);
+            else if (lit)
+                store_nothing_seen(d->out, up, down);
         }
         if (f == end)
             break;
