@@ -123,21 +123,6 @@ vf_status_t vfi_table_scratch_alloc(vfi_table_scratch_t *scratch, uint32_t n, vf
                                                                                             : VF_ERR_NOMEM;
 }
 
-size_t vfi_table_scratch_lit_bytes(uint32_t n)
-{
-    return vfi_table_scratch_bytes(n) + vfi_arena_block(sizeof(vfi_suffix_lit_t) * (n - 1));
-}
-
-vf_status_t vfi_table_scratch_alloc_lit(vfi_table_scratch_t *scratch, uint32_t n, vf_arena_t *arena)
-{
-    vf_status_t s = vfi_table_scratch_alloc(scratch, n, arena);
-    if (s == VF_OK) {
-        scratch->suffix_lit = vfi_arena_alloc(arena, sizeof(vfi_suffix_lit_t) * (n - 1));
-        s = scratch->suffix_lit ? VF_OK : VF_ERR_NOMEM;
-    }
-    return s;
-}
-
 /* The record of diagonal r (1 .. n - 1) once list_intervals has run. */
 static inline diagonal_t diagonal(const vfi_table_scratch_t *scratch, vfi_table_out_t out, uint32_t n, uint32_t r)
 {
@@ -527,14 +512,9 @@ static inline void store_window(vfi_table_out_t out, bool q15, size_t up, size_t
     }
 }
 
-void vfi_store_entry(vfi_table_out_t out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a)
+void vfi_store_entry(const vfi_table_out_t *out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a)
 {
-    vfi_store_q30(out, entry, r, g, b, a);
-}
-
-void vfi_store_lit_entry(vfi_table_out_t out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a)
-{
-    vfi_store_lit_q30(out, entry, r, g, b, a);
+    vfi_store_q30(*out, entry, r, g, b, a);
 }
 
 /* Out of line, so that store_window stays small enough to be inlined into the loops; the values one by one, so

@@ -35,10 +35,9 @@ static inline uint16_t vfi_q30_to_grid(uint32_t v, uint32_t bits)
 }
 
 /* vfi_store_q30 out of line (preint.c), for the point table and the brute force in tables.c, whose speed does not
- * matter: one copy of the rounding in a build for size. The lit one writes the entry's front-weighted values
- * (out.lit_q15 or out.lit_u8) with the same rounding. */
-void vfi_store_entry(vfi_table_out_t out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a);
-void vfi_store_lit_entry(vfi_table_out_t out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a);
+ * matter: one copy of the rounding in a build for size. out by address: the table's record is 5 words, more than
+ * the registers that pass arguments on 32-bit ARM. */
+void vfi_store_entry(const vfi_table_out_t *out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a);
 
 /* Four Q.30 values into entry `entry` of the table at q15 (with grid_bits) or u8, whichever is set. */
 static inline void vfi_store_values_q30(uint16_t *q15, uint8_t *u8, uint32_t grid_bits, size_t entry, uint32_t r,

@@ -58,6 +58,8 @@ void vfi_point_entries(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_o
 }
 
 #if VF_TABLE_ORACLE
+static void bruteforce_lit(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out_t out);
+
 /* lit: x's front-weighted sums with y's added, y seen through transmittance t (Q.30): as over() does for C, so
  * that each sum is at most its C or A term by term. */
 static inline vfi_seg_t add_behind(const vfi_seg_t *x, uint64_t t, const vfi_seg_t *y)
@@ -70,29 +72,27 @@ static inline vfi_seg_t add_behind(const vfi_seg_t *x, uint64_t t, const vfi_seg
     return s;
 }
 
-/* The oracle: docs/algorithm.md section 2 (and lit, section 7) read literally, each entry on its own. It shares
- * nothing with the incremental builder (preint.c) but the exponential, alpha t(x) (tables.h), the classification
- * and the final rounding (table_store.h), so that a slip in how that one groups or evaluates intervals cannot hide
- * in both. lit: piece k of r adds T_k C_k (1 - theta_k) and T_k alpha_k (1 - theta_k) with
- * alpha_k (1 - theta_k) = ((r - k) alpha_k - alpha_k t(x_k)) / r, rounded once, at most alpha_k. */
-static VF_ALWAYS_INLINE void bruteforce_body(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out_t out,
-                                             bool lit)
+/* The oracle: docs/algorithm.md section 2 read literally, each entry on its own. It shares nothing with the
+ * incremental builder (preint.c) but the exponential, the classification and the final rounding (table_store.h),
+ * so that a slip in how that one groups or evaluates intervals cannot hide in both. */
+void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
+                                 vfi_table_out_t out)
 {
-    if (!VF_LIT_TABLES)
-        lit = false;
     const uint32_t n = cls->n;
+    (void)scratch;
+    if (vfi_table_out_lit(out)) {
+        bruteforce_lit(cls, slab_q16, out);
+        return;
+    }
     for (uint32_t f = 0; f < n; f++)
         for (uint32_t b = 0; b < n; b++) {
-            vfi_seg_t acc, front;
+            vfi_seg_t acc;
             if (f == b) {
                 acc = point_seg(cls, f, slab_q16);
-                if (lit)
-                    front = point_lit_seg(cls, f, slab_q16, &acc);
             } else {
                 uint32_t r = f < b ? b - f : f - b;
                 uint64_t length_q28 = vfi_udiv64(((uint64_t)slab_q16 << 12) + r / 2, r); /* d / r */
                 acc.r = acc.g = acc.b = acc.a = 0;
-                front = acc;
                 for (uint32_t k = 0; k < r; k++) { /* the intervals from f towards b, front to back */
                     uint32_t m = f < b ? f + k : f - 1 - k;
                     uint64_t mean_q24 = ((uint64_t)cls->tau_q28[m] + cls->tau_q28[m + 1] + 16) >> 5;
@@ -101,33 +101,53 @@ static VF_ALWAYS_INLINE void bruteforce_body(const vfi_classify_t *cls, uint32_t
                     iv.r = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 0] * iv.a + HALF_Q30) >> 30);
                     iv.g = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 1] * iv.a + HALF_Q30) >> 30);
                     iv.b = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 2] * iv.a + HALF_Q30) >> 30);
-                    if (lit) {
-                        const uint64_t x = (mean_q24 * length_q28 + (UINT64_C(1) << 23)) >> 24;
-                        const uint64_t g = vfi_emission_depth_q30(x, (uint32_t)(ONE_Q30 - iv.a));
-                        vfi_seg_t piece;
-                        piece.a = (uint32_t)vfi_udiv64((uint64_t)(r - k) * iv.a - g + r / 2, r);
-                        piece.r = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 0] * piece.a + HALF_Q30) >> 30);
-                        piece.g = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 1] * piece.a + HALF_Q30) >> 30);
-                        piece.b = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 2] * piece.a + HALF_Q30) >> 30);
-                        front = add_behind(&front, ONE_Q30 - acc.a, &piece);
-                    }
                     acc = over(&acc, &iv);
                 }
             }
             store(out, (size_t)f * n + b, &acc);
-            if (lit)
-                store_lit(out, (size_t)f * n + b, &front);
         }
 }
 
-void vfi_preint_table_bruteforce(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
-                                 vfi_table_out_t out)
+/* The same with docs/algorithm.md section 7's front-weighted sums (and alpha t(x), tables.h, shared with the
+ * incremental builder as the exponential is): piece k of r adds T_k C_k (1 - theta_k) and T_k alpha_k
+ * (1 - theta_k), with alpha_k (1 - theta_k) = ((r - k) alpha_k - alpha_k t(x_k)) / r rounded once, at most
+ * alpha_k. Apart from the unlit loop so that the oracle's speed is as it was; its main values are that loop's. */
+static void bruteforce_lit(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out_t out)
 {
-    (void)scratch;
-    if (vfi_table_out_lit(out))
-        bruteforce_body(cls, slab_q16, out, true);
-    else
-        bruteforce_body(cls, slab_q16, out, false);
+    const uint32_t n = cls->n;
+    for (uint32_t f = 0; f < n; f++)
+        for (uint32_t b = 0; b < n; b++) {
+            vfi_seg_t acc, front;
+            if (f == b) {
+                acc = point_seg(cls, f, slab_q16);
+                front = point_lit_seg(cls, f, slab_q16, &acc);
+            } else {
+                uint32_t r = f < b ? b - f : f - b;
+                uint64_t length_q28 = vfi_udiv64(((uint64_t)slab_q16 << 12) + r / 2, r); /* d / r */
+                acc.r = acc.g = acc.b = acc.a = 0;
+                front = acc;
+                for (uint32_t k = 0; k < r; k++) {
+                    uint32_t m = f < b ? f + k : f - 1 - k;
+                    uint64_t mean_q24 = ((uint64_t)cls->tau_q28[m] + cls->tau_q28[m + 1] + 16) >> 5;
+                    const uint64_t x = (mean_q24 * length_q28 + (UINT64_C(1) << 23)) >> 24;
+                    vfi_seg_t iv, piece;
+                    iv.a = mean_q24 ? opacity_q30(x) : 0;
+                    piece.a = (uint32_t)vfi_udiv64((uint64_t)(r - k) * iv.a -
+                                                       vfi_emission_depth_q30(x, (uint32_t)(ONE_Q30 - iv.a)) + r / 2,
+                                                   r);
+                    iv.r = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 0] * iv.a + HALF_Q30) >> 30);
+                    iv.g = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 1] * iv.a + HALF_Q30) >> 30);
+                    iv.b = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 2] * iv.a + HALF_Q30) >> 30);
+                    piece.r = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 0] * piece.a + HALF_Q30) >> 30);
+                    piece.g = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 1] * piece.a + HALF_Q30) >> 30);
+                    piece.b = (uint32_t)(((uint64_t)cls->weight_q30[m * 3 + 2] * piece.a + HALF_Q30) >> 30);
+                    front = add_behind(&front, ONE_Q30 - acc.a, &piece);
+                    acc = over(&acc, &iv);
+                }
+            }
+            store(out, (size_t)f * n + b, &acc);
+            store_lit(out, (size_t)f * n + b, &front);
+        }
 }
 #endif
 
@@ -156,7 +176,7 @@ static vfi_seg_t point_seg(const vfi_classify_t *cls, uint32_t i, uint32_t slab_
 
 static inline void store(vfi_table_out_t out, size_t entry, const vfi_seg_t *s)
 {
-    vfi_store_entry(out, entry, s->r, s->g, s->b, s->a);
+    vfi_store_entry(&out, entry, s->r, s->g, s->b, s->a);
 }
 
 /* Entry i's front-weighted values (docs/algorithm.md section 7), from its point segment s: the uniform slab of
@@ -172,9 +192,10 @@ static vfi_seg_t point_lit_seg(const vfi_classify_t *cls, uint32_t i, uint32_t s
     return l;
 }
 
+/* inline, unlike store(): no code in builds without lit tables, where the callers are dead */
 static inline void store_lit(vfi_table_out_t out, size_t entry, const vfi_seg_t *s)
 {
-    vfi_store_lit_entry(out, entry, s->r, s->g, s->b, s->a);
+    vfi_store_lit_q30(out, entry, s->r, s->g, s->b, s->a);
 }
 
 void vfi_correction_lut(uint32_t rho_q16, uint16_t *f_q15, uint32_t *g_q16)
@@ -290,7 +311,8 @@ static vf_status_t build(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, int w
     vfi_table_scratch_t scratch;
     vf_status_t s = vfi_classify_alloc(&cls, n, VF_LOOKUP_NEAREST, arena);
     if (s == VF_OK)
-        s = lit_out ? vfi_table_scratch_alloc_lit(&scratch, n, arena) : vfi_table_scratch_alloc(&scratch, n, arena);
+        s = VF_LIT_TABLES && lit_out ? vfi_table_scratch_alloc_lit(&scratch, n, arena)
+                                     : vfi_table_scratch_alloc(&scratch, n, arena);
     if (s == VF_OK)
         s = vfi_classify(&cls, tf);
     if (s == VF_OK) {

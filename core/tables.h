@@ -6,6 +6,7 @@
 #ifndef VF_TABLES_H
 #define VF_TABLES_H
 
+#include "arena.h"
 #include "classify.h"
 #include "fixmath.h"
 
@@ -110,10 +111,23 @@ typedef struct vfi_suffix_lit {
 
 size_t vfi_table_scratch_bytes(uint32_t n);
 vf_status_t vfi_table_scratch_alloc(vfi_table_scratch_t *scratch, uint32_t n, vf_arena_t *arena);
+
 /* The scratch of a lit build: the above and the suffixes' moments, 64 bytes an entry more (16 KB for 256
- * entries), so that unlit renderers need no more than before. */
-size_t vfi_table_scratch_lit_bytes(uint32_t n);
-vf_status_t vfi_table_scratch_alloc_lit(vfi_table_scratch_t *scratch, uint32_t n, vf_arena_t *arena);
+ * entries), so that unlit renderers need no more than before. Inline: no code in builds that never ask. */
+static inline size_t vfi_table_scratch_lit_bytes(uint32_t n)
+{
+    return vfi_table_scratch_bytes(n) + vfi_arena_block(sizeof(vfi_suffix_lit_t) * (n - 1));
+}
+
+static inline vf_status_t vfi_table_scratch_alloc_lit(vfi_table_scratch_t *scratch, uint32_t n, vf_arena_t *arena)
+{
+    vf_status_t s = vfi_table_scratch_alloc(scratch, n, arena);
+    if (s == VF_OK) {
+        scratch->suffix_lit = vfi_arena_alloc(arena, sizeof(vfi_suffix_lit_t) * (n - 1));
+        s = scratch->suffix_lit ? VF_OK : VF_ERR_NOMEM;
+    }
+    return s;
+}
 
 /* alpha t(x) for a piece of optical depth x (Q.28) and transmittance t = exp(-x) (Q.30, as the builders have it):
  * t(x) = 1 / x - exp(-x) / (1 - exp(-x)) is the mean depth, in piece lengths, of the light a uniform piece sends
