@@ -48,8 +48,8 @@
 #endif
 
 /* The front-weighted (lit) tables of interpolated pre-integrated lighting (docs/algorithm.md section 7; tables.h,
- * vfi_table_out_t.lit_q15 and lit_u8; vf_table_preint_lit), about 3.9 KB of Cortex-M4 code: 0 leaves them out,
- * the builders then never write lit outputs and vf_table_preint_lit gives VF_ERR_UNSUPPORTED. */
+ * vfi_table_out_t.lit_q15 and lit_u8; vf_table_preint_lit), about 4.8 KB of Cortex-M4 code as linked: 0 leaves
+ * them out, the builders then never write lit outputs and vf_table_preint_lit gives VF_ERR_UNSUPPORTED. */
 #ifndef VF_LIT_TABLES
 #define VF_LIT_TABLES 1
 #endif
