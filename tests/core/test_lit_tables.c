@@ -11,7 +11,7 @@
  *                        0.506 and 0.503 LSB, 99.93% of the values the spec's rounded); r = 0 also against the
  *                        closed form S_f = 1 - (1 - exp(-x)) / x, D_f = c S_f
  *   incremental          within 1 LSB of the brute force (measured 1); in 8 bits and on the 10- and 12-bit
- *                        grids within a level of it (measured 1, 33, 9: the main table's figures)
+ *                        grids within a level of it (measured 1 of 255; 32 and 9 LSB of Q1.15, a level of each grid)
  *   8 bits, grids        every lit value within 0.51 of a level of the spec's exact value, as the main table's
  * and the exact properties: D_f <= C and S_f <= a in every entry and format; the main table the same to the bit
  * with the lit outputs asked for or not; parts (1, 2, 3, 7) and diagonals built on demand equal to the whole
