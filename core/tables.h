@@ -166,7 +166,8 @@ void vfi_point_table(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out
 void vfi_point_entries(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out_t out, size_t stride);
 
 /* Order 1, n x n entries. Both give the table of docs/algorithm.md section 2; they differ in how they group the
- * compositing of intervals, so in rounding (at most 1 LSB of Q1.15 apart).
+ * compositing of intervals, so in rounding (at most 1 LSB of Q1.15 apart); with lit outputs, section 7's
+ * front-weighted values too (also at most 1 LSB apart, and D_f <= C, S_f <= a in every entry).
  * Brute force, O(N^3): every entry composites its |b - f| intervals one after another. The oracle.
  * Incremental subrange integration (Lum, Wilson and Ma 2004), O(N^2), in preint.c: along a diagonal |b - f| = r
  * every interval has length d / r; in blocks of r intervals, each entry joins a suffix of one block (kept in
@@ -184,7 +185,9 @@ void vfi_preint_table_part(const vfi_classify_t *cls, uint32_t slab_q16, const v
  * builds the diagonal itself, lists the intervals and marks every other entry unbuilt, colour VFI_UNBUILT_Q15 and
  * opacity 0, which no entry has (values are at most 1.0, 32768). A reader that meets such an entry asks for the
  * diagonal |b - f| of entry (f, b), which vfi_preint_demand_diagonal builds whole, both triangles, to the bit as
- * vfi_preint_table_part would. 16-bit tables (out.q15) only. */
+ * vfi_preint_table_part would. 16-bit tables (out.q15) only. With lit outputs, a diagonal's lit entries are
+ * written with its entries, and hold nothing before (the marks are in out.q15 alone); scratch from
+ * vfi_table_scratch_alloc_lit. */
 #define VFI_UNBUILT_Q15 0xFFFFu
 typedef struct vfi_demand {
     const vfi_classify_t *cls;
