@@ -28,24 +28,25 @@
  * joins a suffix grown at its seen end with a prefix grown at its far end (e <= 0), its back colour the other way
  * round, so e < r. Both directions use the one t, which the bounds allow.
  *
- * The front-weighted (lit) outputs (docs/algorithm.md section 7: D_f = sum_k T_k C_k (1 - theta_k) per channel and
- * S_f = sum_k T_k alpha_k (1 - theta_k), theta_k = (k + t(x_k)) / r) are D_f = C - M / r and S_f = A - M_A / r,
- * where M = sum_k T_k C_k (k + t(x_k)) and M_A = sum_k T_k alpha_k (k + t(x_k)) are the emission-position moments
- * seen from the entry's front, positions in intervals. So each run carries, besides its colours, the moments
- * seen from its front and from its back (about the end that direction sees first), opacity's too, in Q.22 (they
- * reach r < 2^10, so that a product with a Q.30 factor stays below 2^64). With g_v = alpha_v t(x_v) of the diagonal's
- * piece length (tables.h, once per interval and diagonal beside t_v), v joins a run x
+ * The front-weighted (lit) outputs (docs/algorithm.md section 7: D_f = sum_k T_k C_k (1 - theta_k) per channel and S_f
+ * = sum_k T_k alpha_k (1 - theta_k), theta_k = (k + t(x_k)) / r) are D_f = C - M / r and S_f = A - M_A / r, where M =
+ * sum_k T_k C_k (k + t(x_k)) and M_A = sum_k T_k alpha_k (k + t(x_k)) are the emission-position moments seen from the
+ * entry's front, positions in intervals. So each run carries, besides its colours, the moments seen from its front and
+ * from its back (about the end that direction sees first), opacity's too, in Q.22 (they reach r < 2^10, so that a
+ * product with a Q.30 factor stays below 2^64). With g_v = alpha_v t(x_v) of the diagonal's piece length (tables.h,
+ * once per interval and diagonal beside t_v), v joins a run x
  *   at the end the moment is seen from:  M' = t_v (M + C) + w g_v        (x's emissions one interval deeper)
  *   at the far end, behind n intervals:  M' = M + w (n (t - t') + t g_v) (v's emission, x letting t - t' through)
- * and for M_A the same with w = 1 and C = A = 1 - t. Two runs join as colours do, the one behind taken the front
- * one's length deeper: M = M_x + t_x (M_y + n_x C_y). block_sparse's runs skip the intervals that change no bit
- * (t = 1, and then g = 0 too) but count them in the positions; where it copies a window's entries to the next,
- * the lit values move: the moments shift by one interval's worth of the window's colour instead.
- * Each step rounds once to Q.22, so a moment is off by about r 2^-22 at most and M / r by 2^-22, a 128th of an LSB
- * of Q1.15 (tests/core/test_lit_tables.c measures every lit value within 0.51 LSB of the exact one). The bound: D_f is C - M / r worked out on C's own unrounded value (window_t) and clamped below at that
- * form's 0, deliberately: M / r is below C exactly (positions k + t(x) < r) but the roundings of a moment can take
- * it a few LSB of Q.30 past a C of a few LSB. Then D_f <= C and S_f <= a hold in every format, rounded the same way
- * by monotonic conversions, and no lit value exceeds 1.0 by more than its entry does.
+ * and for M_A the same with w = 1 and C = A = 1 - t. Two runs join as colours do, the one behind taken the front one's
+ * length deeper: M = M_x + t_x (M_y + n_x C_y). block_sparse's runs skip the intervals that change no bit (t = 1, and
+ * then g = 0 too) but count them in the positions; where it copies a window's entries to the next, the lit values move:
+ * the moments shift by one interval's worth of the window's colour instead. Each step rounds once to Q.22, so a moment
+ * is off by about r 2^-22 at most and M / r by 2^-22, a 128th of an LSB of Q1.15 (tests/core/test_lit_tables.c measures
+ * every lit value within 0.51 LSB of the exact one). The bound: D_f is C - M / r worked out on C's own unrounded value
+ * (window_t) and clamped below at that form's 0, deliberately: M / r is below C exactly (positions k + t(x) < r) but
+ * the roundings of a moment can take it a few LSB of Q.30 past a C of a few LSB. Then D_f <= C and S_f <= a hold in
+ * every format, rounded the same way by monotonic conversions, and no lit value exceeds 1.0 by more than its entry
+ * does.
  */
 #include "arena.h"
 #include "fixmath.h"
@@ -339,7 +340,8 @@ static VF_ALWAYS_INLINE void moments_add(moments_t *m, bool at_front, const uint
     uint64_t *near = at_front ? m->front : m->back, *far = at_front ? m->back : m->front;
     const uint64_t h = q22_of_q30((uint64_t)depth * (t0 - t) + (((uint64_t)t0 * v->g + HALF_Q30) >> 30));
     for (int c = 0; c < (grey ? 1 : 3); c++) {
-        near[c] = (((near[c] + shift[c]) * v->t + HALF_Q30) >> 30) + (((uint64_t)v->w[c] * v->g + HALF_Q22_IN_Q60) >> 38);
+        near[c] = (((near[c] + shift[c]) * v->t + HALF_Q30) >> 30) +
+                  (((uint64_t)v->w[c] * v->g + HALF_Q22_IN_Q60) >> 38);
         far[c] += ((uint64_t)v->w[c] * h + HALF_Q30) >> 30;
     }
     near[3] = (((near[3] + shift[3]) * v->t + HALF_Q30) >> 30) + q22_of_q30(v->g);

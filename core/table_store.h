@@ -4,9 +4,10 @@
  * round alike. Static inline: the builders call these for every entry.
  *
  * No clamp. A builder's values are at most 1.0 + VFI_STORE_SLACK_Q30 (tables.c and preint.c prove their
- * bounds: 0 and 1023 LSB; a front-weighted value is at most its entry's C or a before the rounding), and every conversion here maps 1.0 + VFI_STORE_SLACK_Q30 to at most 1.0 of its
- * format: round(x 2^15) is 2^15 below 1.0 + 2^-16 (slack < 2^14); round(255 x) is 255 below 1.0 + 2^-1 / 255
- * (slack < 2^29 / 255); round(L x), L = 2^B - 1 <= 4095, is L below 1.0 + 2^-1 / L (slack < 2^29 / 4095).
+ * bounds: 0 and 1023 LSB; a front-weighted value is at most its entry's C or a before the rounding), and every
+ * conversion here maps 1.0 + VFI_STORE_SLACK_Q30 to at most 1.0 of its format: round(x 2^15) is 2^15 below
+ * 1.0 + 2^-16 (slack < 2^14); round(255 x) is 255 below 1.0 + 2^-1 / 255 (slack < 2^29 / 255); round(L x),
+ * L = 2^B - 1 <= 4095, is L below 1.0 + 2^-1 / L (slack < 2^29 / 4095).
  * tests/core/test_classify_tables.c checks the three at 1.0 + VFI_STORE_SLACK_Q30.
  */
 #ifndef VF_TABLE_STORE_H

@@ -296,7 +296,8 @@ size_t vf_table_scratch_bytes(uint32_t n)
     if (n < VF_MIN_TABLE || n > VF_MAX_TABLE)
         return 0;
     /* the lit build's scratch, which holds the others' (tables.h), in builds with it */
-    return VFI_ALIGN + vfi_classify_bytes(n) + (VF_LIT_TABLES ? vfi_table_scratch_lit_bytes(n) : vfi_table_scratch_bytes(n));
+    return VFI_ALIGN + vfi_classify_bytes(n) +
+           (VF_LIT_TABLES ? vfi_table_scratch_lit_bytes(n) : vfi_table_scratch_bytes(n));
 }
 
 static vf_status_t build(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, int which, vf_arena_t *arena,

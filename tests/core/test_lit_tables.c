@@ -389,8 +389,8 @@ static void lit_grey_twin(void)
                     CHECK_MSG(l[1] == l[0] && l[2] == l[0], "N %u entry (%u, %u): lit colour %u %u %u", n, f, b, l[0],
                               l[1], l[2]);
                     CHECK_MSG(f + 3 > n || b + 3 > n || memcmp(l, twin, 8) == 0,
-                              "N %u entry (%u, %u): grey path %u %u, three channels %u %u", n, f, b, l[0], l[3], twin[0],
-                              twin[3]);
+                              "N %u entry (%u, %u): grey path %u %u, three channels %u %u", n, f, b, l[0], l[3],
+                              twin[0], twin[3]);
                 }
         }
     }
@@ -445,7 +445,8 @@ static void lit_parts_and_demand(void)
                 CHECK(memcmp(lit_b + ((size_t)i * n + i) * 4, lit_a + ((size_t)i * n + i) * 4, 8) == 0);
             for (uint32_t asked = 0; asked < 3 * n; asked++) {
                 const uint32_t f = rnd(n), b = rnd(n);
-                if (f != b && main_b[((size_t)f * n + b) * 4] == VFI_UNBUILT_Q15 && main_b[((size_t)f * n + b) * 4 + 3] == 0)
+                const uint16_t *e = main_b + ((size_t)f * n + b) * 4;
+                if (f != b && e[0] == VFI_UNBUILT_Q15 && e[3] == 0)
                     vfi_preint_demand_diagonal(&demand, f, b);
                 else if (rnd(8) == 0 && f != b)
                     vfi_preint_demand_diagonal(&demand, f, b); /* again: the same entries */
@@ -527,12 +528,12 @@ static void lit_formats(void)
                                                            : (c < 4 ? grid_main : grid_lit)[0][at];
                                 const int v1 = format == 0 ? (c < 4 ? u8_main : u8_lit)[1][at]
                                                            : (c < 4 ? grid_main : grid_lit)[1][at];
-                                if (c >= 4)
-                                    worst_between[format] = abs(v0 - v1) > worst_between[format] ? abs(v0 - v1)
-                                                                                                 : worst_between[format];
+                                if (c >= 4 && abs(v0 - v1) > worst_between[format])
+                                    worst_between[format] = abs(v0 - v1);
                                 /* zero main values are the invisible ranges', exactly; lit values follow from
                                  * D_f <= C and S_f <= a (below) */
-                                CHECK_MSG(abs(v0 - v1) <= level && (f != b || v0 == v1) && (c >= 4 || v1 != 0 || v0 == 0),
+                                CHECK_MSG(abs(v0 - v1) <= level && (f != b || v0 == v1) &&
+                                              (c >= 4 || v1 != 0 || v0 == 0),
                                           "N %u d %g %u bits entry (%u, %u) value %d: incremental %d, brute force %d",
                                           n, d, bits, f, b, c, v0, v1);
                             }
