@@ -11,6 +11,8 @@
  *   buffers  the back samples' table positions, for the next slab: slice-sized, two of [rows][R (n_i + 1) + 1]
  *            indexed by R + the pixel's place in the slice, u - cu (front, back), or image-sized, one of
  *            [rows][int_w] indexed by pixel, updated in place
+ *   shades   lit frames (the plain loop): the back samples' shades for the next slab, as the buffers, right after
+ *            them (the same index, a fixed distance on)
  *   visits   [2][rows] the runs each row's last two slabs walked (row_visits_t), each with room for the most runs a
  *            row can have, (int_w + 1) / 2 + 1
  */
@@ -37,10 +39,11 @@ size_t vfi_band_scratch_bytes(const vf_renderer_t *r, uint32_t rows)
     size_t bytes = 2 * SCRATCH_ALIGN + sizeof(uint16_t) * rows * ((size_t)r->max_int_w + 1);
     if (r->params.mode != VF_MODE_PREINT1)
         return bytes;
+    const size_t copies = VF_LIGHTING && r->params.lighting ? 2 : 1; /* the buffers, and for lighting their shades */
     if (r->params.buffer == VF_BUFFER_IMAGE)
-        bytes += SCRATCH_ALIGN + sizeof(uint32_t) * rows * (size_t)r->max_int_w;
+        bytes += SCRATCH_ALIGN + copies * sizeof(uint32_t) * rows * (size_t)r->max_int_w;
     else
-        bytes += SCRATCH_ALIGN + 2 * sizeof(uint32_t) * rows * ((size_t)r->params.rays * (r->max_ni + 1) + 1);
+        bytes += SCRATCH_ALIGN + copies * 2 * sizeof(uint32_t) * rows * ((size_t)r->params.rays * (r->max_ni + 1) + 1);
     return bytes + 2 * SCRATCH_ALIGN + 2 * rows * (sizeof(row_visits_t) + sizeof(vfi_span_t) * visits_capacity(r->max_int_w));
 }
 
@@ -53,6 +56,8 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     if (bytes < vfi_band_scratch_bytes(r, rows))
         return VF_ERR_NOMEM;
 
+    row_job_t job;
+    vfi_zero(&job, sizeof job);
     /* Carve the scratch; open every pixel; no row walked by any slab yet; clear the band. */
     uint16_t *next = (uint16_t *)align_up(scratch);
     for (uint32_t y = 0; y < rows; y++)
@@ -67,7 +72,9 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     if (r->params.mode == VF_MODE_PREINT1) {
         buf[0] = (uint32_t *)align_up((unsigned char *)(next + (size_t)rows * (width + 1)));
         buf[1] = image_buffer ? buf[0] : buf[0] + rows * buf_row;
-        visits = (row_visits_t *)align_up((unsigned char *)(buf[1] + rows * buf_row));
+        /* lighting's shades a fixed distance after the buffers (composite_order1.c's plain loop) */
+        job.shade_offset = VF_LIGHTING && r->params.lighting ? (size_t)(buf[1] + rows * buf_row - buf[0]) : 0;
+        visits = (row_visits_t *)align_up((unsigned char *)(buf[1] + rows * buf_row + job.shade_offset));
         vfi_span_t *spans = (vfi_span_t *)align_up((unsigned char *)(visits + 2 * rows));
         for (uint32_t n = 0; n < 2 * rows; n++) {
             visits[n].slab = UINT32_MAX;
@@ -79,8 +86,6 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     for (size_t e = 0; e < (size_t)rows * width * 4; e++)
         band[e] = 0;
 
-    row_job_t job;
-    vfi_zero(&job, sizeof job);
     job.cls = &r->cls;
     job.row = l->row;
     job.lookup = r->lookup;
@@ -94,8 +99,11 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
 #if VF_LIGHTING
     job.shading = vfi_lit(r) ? &r->shading : NULL;
 #endif
-    job.plain = !(VF_LIGHTING && job.shading) &&
-                vfi_plain_path(job.bilinear, job.lookup.q15, job.lookup.lut_f, job.sample_shift, job.inter_shift, rays);
+    const bool plain = vfi_plain_path(job.bilinear, job.lookup.q15, job.lookup.lut_f, job.sample_shift, job.inter_shift,
+                                      rays);
+    job.plain = plain && !(VF_LIGHTING && job.shading);
+    job.plain_lit = plain && VF_LIGHTING && job.shading && !job.shading->ramp;
+    job.grey = r->tf_grey;
     const vfi_runs_t *runs = &r->runs[f->k_axis];
     const bool partial = VF_PARTIAL_SLABS && r->params.partial_slabs; /* constant 0 in builds without them */
     job.ni = l->ni;

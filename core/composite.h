@@ -73,6 +73,10 @@ typedef struct row_job {
     const vfi_classify_t *cls;
     vfi_lookup_ctx_t lookup;
     bool plain;                        /* nearest lookup, 16-bit table, no lut, full precision: the fast path */
+    bool plain_lit;                    /* the same for a lit frame without gradient opacity: the lit fast loops */
+    bool grey;                         /* the transfer function is grey: every entry's three colours are equal */
+    size_t shade_offset;               /* lit preint1: a back sample's shade is buffered this many elements after
+                                        * its table position, to be the next slab's front shade */
     bool bilinear;
     uint32_t sample_shift;             /* precision studies: samples rounded to 32 - shift fraction bits (0: exact) */
     uint32_t inter_shift;              /* precision studies: accumulators rounded to multiples of 2^shift in Q1.15 */

@@ -65,6 +65,43 @@ static VF_NOINLINE void row_point_n(const row_job_t *job, run_merge_t *m)
 }
 #endif
 
+#if VF_LIGHTING
+/* A lit point frame's plain loop (docs/algorithm.md, section 7): each visible entry lit with its sample's shade. */
+static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_t *m, bool n256)
+{
+    const slice_place_t *sl = job->front;
+    const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fy = job->front_fy, n = job->lookup.n;
+    const uint16_t *table = job->lookup.q15;
+    const uint8_t *data = job->row_data;
+    const vfi_shading_t *sh = job->shading;
+    uint16_t *next = job->next, *pixels = job->pixels;
+    int32_t a, b;
+    while (vfi_merge_next(m, &a, &b)) {
+        a = a > job->clip_lo ? a : job->clip_lo;
+        b = b < job->clip_hi + 1 ? b : job->clip_hi + 1;
+        for (uint32_t u = a < b ? vfi_next_open(next, (uint32_t)a) : (uint32_t)b; u < (uint32_t)b;
+             u = vfi_next_open(next, u + 1)) {
+            const uint8_t *p = data + (u - cu);
+            const uint16_t *e = point_entry(table, p, row, fx, fy, n, n256);
+            if (!e[3])
+                continue;
+            uint32_t seg[4] = {e[0], e[1], e[2], e[3]};
+            vfi_light_point(seg, vfi_sample_shade(sh, p, row, fx, fy));
+            if (vfi_blend(pixels + (size_t)u * 4, seg))
+                next[u] = (uint16_t)(u + 1);
+        }
+    }
+}
+
+static VF_NOINLINE void row_point_lit(const row_job_t *job, run_merge_t *m)
+{
+    if (job->lookup.n == 256)
+        row_point_lit_body(job, m, true);
+    else
+        row_point_lit_body(job, m, false);
+}
+#endif
+
 /* Any mode, lookup, table format, correction, precision study or number of rays. With one ray per voxel a pixel's
  * column is u - cu at the slice's one fraction; with more each pixel has its own. */
 static VF_ALWAYS_INLINE void row_general(const row_job_t *job, run_merge_t *m, bool preclass, bool one_ray)
@@ -99,6 +136,12 @@ static VF_NOINLINE void row_general_any(const row_job_t *job, run_merge_t *m, bo
 
 void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
 {
+#if VF_LIGHTING
+    if (job->plain_lit && !preclass) {
+        row_point_lit(job, m);
+        return;
+    }
+#endif
     if (job->plain && !preclass && job->lookup.n == 256)
         row_point_256(job, m);
 #if VF_SPECIAL_LOOPS

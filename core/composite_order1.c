@@ -38,6 +38,12 @@ typedef struct plain_row {
     /* the same for every row of a slab */
     uint32_t front_cu, front_fx, front_fy, row; /* Q0.16 fractions; bytes per slice row */
     const vfi_demand_t *demand;      /* the 2D table is built as it is read (tables.h), or NULL */
+    const vfi_shading_t *shading;    /* lit frames: the shades, and the front-weighted table beside the table */
+    const uint16_t *lit;
+    size_t shade_offset;             /* a buffered shade's distance from its buffered position */
+    const uint16_t *front_codes;     /* nearest shades: the front sample's voxel code at [u], the back's at [c] */
+    const uint16_t *back_codes;
+    bool nearest_shade, grey;
 } plain_row_t;
 
 /* Entry e of a table built as read (tables.h), found unbuilt: its diagonal built. Out of line: the loop meets
@@ -110,6 +116,69 @@ static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, u
     }
 }
 
+/* A lit frame's plain loop (docs/algorithm.md, section 7): span_plain's entries, each lit with its front and back
+ * samples' shades and the front-weighted values beside it, without the look-ahead (the lighting's own loads and
+ * products give the entry's load time enough). A back sample's shade is buffered, packed as the shade table holds
+ * it, to be the next slab's front one. nearest: each sample's shade is its nearest voxel's, read through code rows
+ * with the slab's rounding folded in (plain_row_t); else the four voxels' interpolated. grey: the transfer function
+ * is grey, so one colour channel is worked out for all three. */
+static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256,
+                                                bool nearest, bool grey)
+{
+    plain_loop_t l = pr->loop;
+    if (n256)
+        l.n = 256;
+    const vfi_shading_t *sh = pr->shading;
+    const uint32_t *shade = sh->shade;
+    const size_t off = pr->shade_offset;
+    for (; u < y; u = vfi_next_open(l.next, u + 1)) {
+        const uint32_t c = u - l.cu;
+        /* the front shade read before the back one is stored: an image-sized buffer holds both in one place */
+        uint32_t front = buffered ? l.front_buf[c + off] : 0, back;
+        const uint16_t *e = plain_entry(&l, pr, u, buffered, n256);
+        if (nearest) {
+            back = shade[pr->back_codes[c]];
+        } else {
+            const vfi_shade_t b = vfi_sample_shade(sh, l.top + c, pr->row, l.fx, l.fy);
+            back = b.d | b.s << 16;
+        }
+        l.back_buf[c + off] = back; /* the next slab's front shade, as its position is */
+        const uint32_t a = e[3];
+        if (!a)
+            continue;
+        if (!buffered && nearest) {
+            front = shade[pr->front_codes[u]];
+        } else if (!buffered) {
+            const vfi_shade_t f = vfi_sample_shade(sh, pr->front + (u - pr->front_cu), pr->row, pr->front_fx,
+                                                   pr->front_fy);
+            front = f.d | f.s << 16;
+        }
+        const vfi_shade_t f = {front & 0xFFFFu, front >> 16, 32768u}, b = {back & 0xFFFFu, back >> 16, 32768u};
+        const uint16_t *d = pr->lit + (e - l.table);
+        const uint32_t specular = vfi_lit_specular(a, d[3], f, b);
+        const uint32_t r = vfi_lit_channel(e[0], d[0], a, specular, f, b);
+        const uint32_t g = grey ? r : vfi_lit_channel(e[1], d[1], a, specular, f, b);
+        const uint32_t bl = grey ? r : vfi_lit_channel(e[2], d[2], a, specular, f, b);
+        if (vfi_blend_rgba(l.pixels + (size_t)u * 4, r, g, bl, a))
+            l.next[u] = (uint16_t)(u + 1);
+    }
+    return u;
+}
+
+/* span_plain_lit for the frame's shade lookup and colours: out of line, so that a row does not pay for its registers */
+static VF_NOINLINE uint32_t span_lit(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256)
+{
+    if (pr->nearest_shade && pr->grey)
+        return buffered ? span_plain_lit(pr, u, y, true, n256, true, true) : span_plain_lit(pr, u, y, false, n256, true, true);
+    if (pr->nearest_shade)
+        return buffered ? span_plain_lit(pr, u, y, true, n256, true, false)
+                        : span_plain_lit(pr, u, y, false, n256, true, false);
+    if (pr->grey)
+        return buffered ? span_plain_lit(pr, u, y, true, n256, false, true)
+                        : span_plain_lit(pr, u, y, false, n256, false, true);
+    return buffered ? span_plain_lit(pr, u, y, true, n256, false, false) : span_plain_lit(pr, u, y, false, n256, false, false);
+}
+
 /* Any lookup, table format, correction, precision study or number of rays: the open pixels from u, which is open, to
  * y. Nearest positions are kept times N in the buffer (the front entry's row in the 2D table), bilinear ones as
  * they are. With one ray per voxel a pixel's column is u - cu at the slice's one fraction; with more each pixel
@@ -160,7 +229,7 @@ static uint32_t span_general(const row_job_t *job, uint32_t u, uint32_t y, bool 
 /* A row's walked runs (vfi_merge_runs), each cut into spans whose fronts are all buffered or all sampled here. The
  * plain path takes its arrays from pr, the general one from job. */
 static VF_ALWAYS_INLINE void row(const row_job_t *job, const plain_row_t *pr, const vfi_span_t *walked, uint32_t count,
-                                 const row_visits_t *last_row, bool plain, bool n256)
+                                 const row_visits_t *last_row, bool plain, bool n256, bool lit)
 {
     const vfi_span_t *last = last_row ? last_row->span : NULL;
     const uint32_t last_count = last_row ? last_row->count : 0;
@@ -179,7 +248,10 @@ static VF_ALWAYS_INLINE void row(const row_job_t *job, const plain_row_t *pr, co
                 u = span_general(job, u, y, buffered);
                 continue;
             }
-            u = buffered ? span_plain(pr, u, y, true, n256) : span_plain(pr, u, y, false, n256);
+            if (VF_LIGHTING && lit)
+                u = span_lit(pr, u, y, buffered, n256);
+            else
+                u = buffered ? span_plain(pr, u, y, true, n256) : span_plain(pr, u, y, false, n256);
         }
     }
 }
@@ -194,7 +266,7 @@ static inline const row_visits_t *last_visits(const vfi_slab_rows_t *s, uint32_t
  * same fraction, so row v_lo + k's slice rows, runs and arrays are k rows, cell rows and strides after row v_lo's,
  * and what its loops read is set up once (pr). The general path sets job's row fields for each row (with more rays
  * the fraction and slice row are the row's own). */
-static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s, bool plain, bool n256)
+static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s, bool plain, bool n256, bool lit)
 {
     const slice_place_t *front = job->front, *back = job->back;
     const int32_t lo = MAX(front->u_lo, back->u_lo), hi = MIN(front->u_hi, back->u_hi);
@@ -214,6 +286,11 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
         pr.front_fx = front->fx;
         pr.row = row_bytes;
         pr.demand = job->demand;
+        pr.shading = job->shading;
+        pr.lit = job->lookup.lit_q15;
+        pr.shade_offset = job->shade_offset;
+        pr.nearest_shade = lit && !job->shading->bilinear;
+        pr.grey = job->grey;
     }
     const uint32_t *runs_f0 = runs + j_f, *runs_b0 = runs + j_b; /* row v_lo's */
     /* the plain loops address the buffers by the back slice's column (a slice buffer's front one is -1, 0 or 1 off) */
@@ -235,6 +312,13 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
             pr.loop.next = s->next + (size_t)k * s->next_stride;
             pr.loop.pixels = s->pixels + (size_t)k * s->pixel_stride;
             pr.front = front_data + (size_t)k * row_bytes;
+            if (VF_LIGHTING && lit && pr.nearest_shade) { /* the nearest voxel's codes, the rounding folded in */
+                const vfi_shading_t *sh = job->shading;
+                pr.back_codes = sh->codes + (pr.loop.top - sh->slices) + (pr.loop.fy >= 32768u ? row_bytes : 0) +
+                                (pr.loop.fx >= 32768u ? 1 : 0);
+                pr.front_codes = sh->codes + (pr.front - sh->slices) + (pr.front_fy >= 32768u ? row_bytes : 0) +
+                                 (pr.front_fx >= 32768u ? 1 : 0) - pr.front_cu;
+            }
         } else {
             job->front_buf = front_buf + (size_t)k * s->buf_stride;
             job->back_buf = back_buf + (size_t)k * s->buf_stride;
@@ -248,16 +332,32 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
         vfi_merge_init(&m, plain ? 16 : job->step_shift, pairs + runs_f[0], pairs + runs_f[1], front,
                        pairs + runs_b[0], pairs + runs_b[1], back);
         now->count = vfi_merge_runs(&m, lo, hi, now->span);
-        row(job, &pr, now->span, now->count, last, plain, n256);
+        row(job, &pr, now->span, now->count, last, plain, n256, lit);
     }
 }
 
+#if VF_LIGHTING
+static VF_NOINLINE void slab_rows_lit(row_job_t *job, const vfi_slab_rows_t *s)
+{
+    if (job->lookup.n == 256)
+        slab_rows(job, s, true, true, true);
+    else
+        slab_rows(job, s, true, false, true);
+}
+#endif
+
 void vfi_slab_preint1(row_job_t *job, const vfi_slab_rows_t *s)
 {
+#if VF_LIGHTING
+    if (job->plain_lit) {
+        slab_rows_lit(job, s);
+        return;
+    }
+#endif
     if (!job->plain)
-        slab_rows(job, s, false, false);
+        slab_rows(job, s, false, false, false);
     else if (job->lookup.n == 256)
-        slab_rows(job, s, true, true);
+        slab_rows(job, s, true, true, false);
     else
-        slab_rows(job, s, true, false);
+        slab_rows(job, s, true, false, false);
 }

@@ -176,6 +176,9 @@ vf_status_t vf_renderer_set_tf(vf_renderer_t *r, const vf_tf_t *tf)
         return s; /* checked before anything was written: the previous transfer function stands */
     r->have_frame = false; /* the frame begun before has tables for the old function: begin again */
     r->have_tf = true;
+    r->tf_grey = true; /* every point grey: so is every entry, lit or not (composite_order1.c's grey loops) */
+    for (uint32_t i = 0; i < tf->count; i++)
+        r->tf_grey = r->tf_grey && tf->points[i].r == tf->points[i].g && tf->points[i].g == tf->points[i].b;
     r->tf_generation++;
     return r->have_window ? encode_runs(r) : VF_OK;
 }

@@ -111,14 +111,27 @@ static inline void vfi_light_point(uint32_t seg[4], vfi_shade_t sh)
 }
 
 /* A slab's entry (seg) and front-weighted values (lit) lit with its front and back samples' shades:
- * C' = L_db C + (L_df - L_db) D_f + L_sb a + (L_sf - L_sb) S_f, clamped to [0, a], then times (g_f + g_b) / 2. */
+ * C' = L_db C + (L_df - L_db) D_f + L_sb a + (L_sf - L_sb) S_f, clamped to [0, a], then times (g_f + g_b) / 2.
+ * Written as L_df D_f + L_db (C - D_f) + L_sf S_f + L_sb (a - S_f): the builders keep D_f <= C and S_f <= a in
+ * every format (tables.h), so every term is non-negative and the sum, at most 3 C + 2 a in Q2.14 x Q1.15, fits 32
+ * bits: the same number as the first form, without a sign or a 64-bit product. */
+static inline uint32_t vfi_lit_specular(uint32_t a, uint32_t s_f, vfi_shade_t f, vfi_shade_t b)
+{
+    return f.s * s_f + b.s * (a - s_f);
+}
+
+static inline uint32_t vfi_lit_channel(uint32_t c, uint32_t d_f, uint32_t a, uint32_t specular, vfi_shade_t f,
+                                       vfi_shade_t b)
+{
+    const uint32_t v = (f.d * d_f + b.d * (c - d_f) + specular + 0x2000u) >> 14;
+    return v < a ? v : a;
+}
+
 static inline void vfi_light_slab(uint32_t seg[4], const uint32_t lit[4], vfi_shade_t f, vfi_shade_t b)
 {
-    const int64_t dd = (int64_t)f.d - b.d, ds = (int64_t)f.s - b.s;
-    for (int n = 0; n < 3; n++) {
-        const int64_t c = ((int64_t)b.d * seg[n] + dd * lit[n] + (int64_t)b.s * seg[3] + ds * lit[3] + 0x2000) >> 14;
-        seg[n] = c < 0 ? 0 : c > seg[3] ? seg[3] : (uint32_t)c;
-    }
+    const uint32_t specular = vfi_lit_specular(seg[3], lit[3], f, b);
+    for (int n = 0; n < 3; n++)
+        seg[n] = vfi_lit_channel(seg[n], lit[n], seg[3], specular, f, b);
     const uint32_t g = (f.g + b.g + 1) >> 1;
     if (g != 32768u)
         for (int n = 0; n < 4; n++)
@@ -133,6 +146,17 @@ static inline bool vfi_blend(uint16_t *px, const uint32_t seg[4])
     px[1] = (uint16_t)(px[1] + ((t * seg[1] + 0x4000u) >> 15));
     px[2] = (uint16_t)(px[2] + ((t * seg[2] + 0x4000u) >> 15));
     px[3] = (uint16_t)(px[3] + ((t * (seg[3] > VFI_ONE_Q15 ? VFI_ONE_Q15 : seg[3]) + 0x4000u) >> 15));
+    return px[3] >= VFI_OPAQUE_Q15;
+}
+
+/* The same for a lit segment's values, each at most 1.0 (no clamp). */
+static inline bool vfi_blend_rgba(uint16_t *px, uint32_t r, uint32_t g, uint32_t b, uint32_t a)
+{
+    uint32_t t = VFI_ONE_Q15 - px[3];
+    px[0] = (uint16_t)(px[0] + ((t * r + 0x4000u) >> 15));
+    px[1] = (uint16_t)(px[1] + ((t * g + 0x4000u) >> 15));
+    px[2] = (uint16_t)(px[2] + ((t * b + 0x4000u) >> 15));
+    px[3] = (uint16_t)(px[3] + ((t * a + 0x4000u) >> 15));
     return px[3] >= VFI_OPAQUE_Q15;
 }
 
