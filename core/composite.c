@@ -99,7 +99,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
 #if VF_LIGHTING
     job.shading = vfi_lit(r) ? &r->shading : NULL;
 #endif
-    const bool plain = vfi_plain_path(job.bilinear, job.lookup.q15, job.lookup.lut_f, job.sample_shift, job.inter_shift,
+    const bool plain = !r->general_loops && vfi_plain_path(job.bilinear, job.lookup.q15, job.lookup.lut_f, job.sample_shift, job.inter_shift,
                                       rays);
     job.plain = plain && !(VF_LIGHTING && job.shading);
     job.plain_lit = plain && VF_LIGHTING && job.shading && !job.shading->ramp;

@@ -66,14 +66,16 @@ static VF_NOINLINE void row_point_n(const row_job_t *job, run_merge_t *m)
 #endif
 
 #if VF_LIGHTING
-/* A lit point frame's plain loop (docs/algorithm.md, section 7): each visible entry lit with its sample's shade. */
-static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_t *m, bool n256)
+/* A lit point frame's plain loop (docs/algorithm.md, section 7): each visible entry lit with its sample's shade;
+ * nearest: the nearest voxel's, read through a code row with the slice's rounding folded in. */
+static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_t *m, bool n256, bool nearest)
 {
     const slice_place_t *sl = job->front;
     const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fy = job->front_fy, n = job->lookup.n;
     const uint16_t *table = job->lookup.q15;
     const uint8_t *data = job->row_data;
     const vfi_shading_t *sh = job->shading;
+    const uint16_t *codes = sh->codes + (data - sh->slices) + (fy >= 32768u ? row : 0) + (fx >= 32768u ? 1 : 0) - cu;
     uint16_t *next = job->next, *pixels = job->pixels;
     int32_t a, b;
     while (vfi_merge_next(m, &a, &b)) {
@@ -86,7 +88,14 @@ static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_
             if (!e[3])
                 continue;
             uint32_t seg[4] = {e[0], e[1], e[2], e[3]};
-            vfi_light_point(seg, vfi_sample_shade(sh, p, row, fx, fy));
+            vfi_shade_t shade;
+            if (nearest) {
+                const uint32_t packed = sh->shade[codes[u]];
+                shade.d = packed & 0xFFFFu, shade.s = packed >> 16, shade.g = 32768u;
+            } else {
+                shade = vfi_sample_shade(sh, p, row, fx, fy);
+            }
+            vfi_light_point(seg, shade);
             if (vfi_blend(pixels + (size_t)u * 4, seg))
                 next[u] = (uint16_t)(u + 1);
         }
@@ -95,10 +104,11 @@ static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_
 
 static VF_NOINLINE void row_point_lit(const row_job_t *job, run_merge_t *m)
 {
-    if (job->lookup.n == 256)
-        row_point_lit_body(job, m, true);
+    const bool n256 = job->lookup.n == 256;
+    if (!job->shading->bilinear)
+        n256 ? row_point_lit_body(job, m, true, true) : row_point_lit_body(job, m, false, true);
     else
-        row_point_lit_body(job, m, false);
+        n256 ? row_point_lit_body(job, m, true, false) : row_point_lit_body(job, m, false, false);
 }
 #endif
 

@@ -338,6 +338,12 @@ vf_status_t vf_renderer_draw(vf_renderer_t *r, const vf_view_t *view, const vf_i
     return s;
 }
 
+void vfi_renderer_general_loops(vf_renderer_t *r, bool general)
+{
+    if (r)
+        r->general_loops = general;
+}
+
 const uint16_t *vfi_renderer_intermediate(const vf_renderer_t *r)
 {
     return r && r->have_frame ? r->intermediate : NULL;
@@ -645,6 +651,7 @@ static bool on_demand(const vf_renderer_t *r)
 {
     const vf_params_t *p = &r->params;
     return p->mode == VF_MODE_PREINT1 && p->correction == VF_CORRECTION_REBUILD && !p->partial_slabs && !vfi_lit(r) &&
+           !r->general_loops &&
            vfi_plain_path(p->lookup == VF_LOOKUP_BILINEAR, r->lookup.q15, r->lookup.lut_f, p->sample_bits,
                           16 - p->intermediate_bits, p->rays);
 }

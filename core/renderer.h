@@ -34,6 +34,7 @@ struct vf_renderer {
     vfi_classify_t cls;
     bool have_tf;
     bool tf_grey;
+    bool general_loops;     /* vfi_renderer_general_loops: tests only */
     uint32_t tf_generation; /* counts transfer-function changes; the tables remember the one they were built for */
 
     vfi_runs_t runs[3];

@@ -2,7 +2,8 @@
  * volfix_internal.h: what volfix's own tests and simulator reach into, beyond the public interface of volfix.h.
  * Not installed: nothing here is promised to users, and it may change with any version.
  *   - fault injection in the arena, for the tests' fault loops;
- *   - read access to the intermediate image and the tables, for tests that check a stage on its own.
+ *   - read access to the intermediate image and the tables, for tests that check a stage on its own;
+ *   - the general compositing loops on demand, for tests that check the plain ones against them.
  */
 #ifndef VOLFIX_INTERNAL_H
 #define VOLFIX_INTERNAL_H
@@ -23,6 +24,10 @@ void vfi_arena_fail_after(vf_arena_t *arena, uint32_t count);
 const uint16_t *vfi_renderer_intermediate(const vf_renderer_t *renderer);
 const uint16_t *vfi_renderer_point_table(const vf_renderer_t *renderer);
 const uint16_t *vfi_renderer_preint_table(const vf_renderer_t *renderer);
+
+/* Composite with the general loops alone (true), never the plain ones: the same pixels, to the bit, which tests
+ * check; the plain loops exist for speed. */
+void vfi_renderer_general_loops(vf_renderer_t *renderer, bool general);
 
 #ifdef __cplusplus
 }

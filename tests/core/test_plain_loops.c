@@ -1,0 +1,122 @@
+/*
+ * test_plain_loops.c: the plain compositing loops (core/composite_order0.c, composite_order1.c: the fast paths of
+ * point and preint1, unlit and lit) against the general loops, which every option takes: the same intermediate
+ * image, to the bit, over modes, table sizes (256 and not), buffers, nearest and bilinear shades, grey and coloured
+ * transfer functions, random volumes, views and lights.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "volfix.h"
+#include "volfix_internal.h"
+
+#define MAXD 24
+static uint8_t vox[MAXD * MAXD * MAXD];
+static _Alignas(16) unsigned char arena_buf[2][1 << 23];
+static _Alignas(16) unsigned char scratch[1 << 21];
+static unsigned char pixels[96 * 96 * 3];
+static uint64_t seed = 0x9E3779B97F4A7C15u;
+
+static void random_volume(uint32_t n[3])
+{
+    for (int a = 0; a < 3; a++)
+        n[a] = 6 + check_below(&seed, MAXD - 6);
+    const int cx = (int)check_below(&seed, n[0]), cy = (int)check_below(&seed, n[1]), cz = (int)check_below(&seed, n[2]);
+    const int rad = 3 + (int)check_below(&seed, 6);
+    for (uint32_t z = 0; z < n[2]; z++)
+        for (uint32_t y = 0; y < n[1]; y++)
+            for (uint32_t x = 0; x < n[0]; x++) {
+                const int d2 = ((int)x - cx) * ((int)x - cx) + ((int)y - cy) * ((int)y - cy) + ((int)z - cz) * ((int)z - cz);
+                uint32_t v = (d2 < rad * rad ? 170 : 20) + check_below(&seed, 60);
+                if (check_below(&seed, 10) == 0)
+                    v = check_below(&seed, 256);
+                vox[((size_t)z * n[1] + y) * n[0] + x] = (uint8_t)v;
+            }
+}
+
+static vf_tf_point_t points[6];
+
+static vf_tf_t random_tf(bool grey)
+{
+    uint32_t count = 2 + check_below(&seed, 4), s = check_below(&seed, 20000);
+    for (uint32_t p = 0; p < count; p++) {
+        s += p ? check_below(&seed, 16000) : 0;
+        const uint16_t r = (uint16_t)check_below(&seed, 65536);
+        points[p] = (vf_tf_point_t){(uint16_t)(s > 65280 ? 65280 : s), r, grey ? r : (uint16_t)check_below(&seed, 65536),
+                                    grey ? r : (uint16_t)check_below(&seed, 65536), (uint16_t)check_below(&seed, 40000)};
+    }
+    return (vf_tf_t){points, count};
+}
+
+/* The frame's intermediate image with the plain loops (general false) or the general ones, into inter. */
+static vf_status_t frame(int k, const vf_params_t *p, const vf_volume_t *vol, const vf_tf_t *tf,
+                         const vf_lighting_t *l, const vf_view_t *view, bool general, uint16_t **inter, size_t *values)
+{
+    vf_arena_t arena;
+    vf_arena_init(&arena, arena_buf[k], sizeof arena_buf[k]);
+    vf_renderer_t *r;
+    vf_status_t s = vf_renderer_create(&r, p, vol, &arena);
+    if (s == VF_OK)
+        s = vf_renderer_set_window(r, (vf_window_t){0, 255});
+    if (s == VF_OK)
+        s = vf_renderer_set_tf(r, tf);
+    if (s == VF_OK && p->lighting)
+        s = vf_renderer_set_lighting(r, l);
+    vfi_renderer_general_loops(r, general);
+    const vf_image_t im = {pixels, 96, 96, 96 * 3, VF_FORMAT_RGB888};
+    if (s == VF_OK)
+        s = vf_renderer_draw(r, view, &im, scratch, sizeof scratch);
+    if (s == VF_OK) {
+        const vf_factor_t *f = vf_renderer_factor(r);
+        *values = (size_t)f->int_w * f->int_h * 4;
+        *inter = (uint16_t *)vfi_renderer_intermediate(r);
+    }
+    return s;
+}
+
+static void plain_equals_general(void)
+{
+    int compared = 0;
+    for (int t = 0; t < 160; t++) {
+        uint32_t n[3];
+        random_volume(n);
+        const vf_volume_t vol = {{n[0], n[1], n[2]}, {65536, 65536 + 65536 * (t % 3 == 0), 65536}, VF_VOXEL_U8, vox};
+        vf_params_t p;
+        vf_params_default(&p);
+        const vf_mode_t modes[] = {VF_MODE_POINT, VF_MODE_PREINT1, VF_MODE_PRECLASS};
+        p.mode = modes[t % 3];
+        p.table_size = t % 4 == 1 ? 64 + check_below(&seed, 100) : 256;
+        p.buffer = t % 5 == 2 ? VF_BUFFER_IMAGE : VF_BUFFER_SLICE;
+        p.lighting = t % 2 == 0;
+        p.shade_lookup = t % 4 < 2 ? VF_LOOKUP_NEAREST : VF_LOOKUP_BILINEAR;
+        p.normal_bits = 8 + 2 * check_below(&seed, 5);
+        const vf_tf_t tf = random_tf(t % 3 != 1);
+        vf_lighting_t l;
+        vf_lighting_default(&l);
+        l.light_count = 1 + check_below(&seed, 2);
+        for (uint32_t k = 0; k < l.light_count; k++)
+            l.lights[k] = (vf_light_t){(int32_t)check_below(&seed, 65536), (int32_t)check_below(&seed, 32768) - 16384};
+        l.ks = (uint16_t)check_below(&seed, 65536);
+        if (t % 7 == 3) /* gradient opacity: the general loops in both, still checked */
+            l.gradient_lo = 5, l.gradient_hi = 90;
+        const vf_view_t view = {(int32_t)check_below(&seed, 65536), (int32_t)check_below(&seed, 65536) - 32768,
+                                (int32_t)check_below(&seed, 65536), 65536};
+        uint16_t *plain, *general;
+        size_t values, values2;
+        CHECK_EQ(frame(0, &p, &vol, &tf, &l, &view, false, &plain, &values), VF_OK);
+        CHECK_EQ(frame(1, &p, &vol, &tf, &l, &view, true, &general, &values2), VF_OK);
+        CHECK_EQ(values, values2);
+        size_t diff = 0;
+        while (diff < values && plain[diff] == general[diff])
+            diff++;
+        CHECK_MSG(diff == values, "case %d (mode %s, %u entries, %s buffer, lighting %d, %s shades): value %zu, plain %u "
+                  "general %u", t, vf_mode_name(p.mode), p.table_size, vf_buffer_name(p.buffer), (int)p.lighting,
+                  vf_lookup_name(p.shade_lookup), diff, plain[diff], general[diff]);
+        compared++;
+    }
+    CHECK_EQ(compared, 160);
+}
+
+CHECK_CASES({"plain loops equal the general ones", plain_equals_general});
+CHECK_RUN("plain-loops")
