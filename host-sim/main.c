@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "volfix.h"
 
 static const char usage[] =
     "usage: volfix-sim COMMAND [options]   (volfix-sim COMMAND --help for its options)\n"
@@ -15,7 +16,8 @@ static const char usage[] =
     "  tables    build a pre-integrated table with each builder: time, error, picture\n"
     "  ray       one ray's signal and its order 0, 1, 2 reconstructions (El Hajjar et al.): CSV, plot\n"
     "  study     the fixed-point precision study: errors, plots, report.md\n"
-    "  diff      two PNG images compared pixel by pixel\n";
+    "  diff      two PNG images compared pixel by pixel\n"
+    "volfix-sim --version prints the version.\n";
 
 int main(int argc, char **argv)
 {
@@ -24,6 +26,10 @@ int main(int argc, char **argv)
         return argc < 2 ? 2 : 0;
     }
     const char *cmd = argv[1];
+    if (strcmp(cmd, "--version") == 0) {
+        printf("volfix-sim %s\n", vf_version());
+        return 0;
+    }
     if (strcmp(cmd, "render") == 0)
         return sim_cmd_render(argc - 2, argv + 2);
     if (strcmp(cmd, "compare") == 0)
