@@ -27,9 +27,9 @@ if have_data; then
     show out/engine.png "$data/engine.nhdr" --preset ramp --view 30,20 --threads 2 || exit 1
     show out/cthead.png "$data/cthead.nhdr" --preset ct-skin-bone --view 180,90 --threads 2 || exit 1
 else
-    echo "  (no sample volumes in VOLFIX_DATA='$data': the CT engine and head are left out. Set VOLFIX_DATA to a"
-    echo "   folder of NRRD volumes such as the volfix shared data: engine.nhdr, cthead.nhdr, ... from the public"
-    echo "   archives its README.md lists, e.g. Open SciVis and the Stanford volume data archive)"
+    echo "  (no sample volumes in VOLFIX_DATA='$data': the CT engine and head are left out. For them, set"
+    echo "   VOLFIX_DATA to a folder of NRRD volumes such as the volfix shared data, whose README.md names each"
+    echo "   volume's public source: make run VOLFIX_DATA=DIR)"
 fi
 viewer=${BUILD:-build}/volfix
 if [ -x "$viewer" ]; then
