@@ -5,8 +5,8 @@
 #      nothing; a ten-line program builds with `pkg-config --cflags --libs volfix` (PKG_CONFIG_SYSROOT_DIR=TMP)
 #      and prints vf_version(), which is core/volfix.h's version and CHANGELOG.md's newest; `pkg-config --static`
 #      names the port layer's libraries; nothing installed mentions ../shared/data; make uninstall leaves nothing;
-#   2. installed for real into a PREFIX of its own (a build of its own at -O0, since the boards' folder is compiled
-#      into volfix), volfix finds a board by name (--board host-headless) and its knob script beside it, and
+#   2. installed for real into a PREFIX of its own (a build of its own at -O0 without debugging information, since
+#      the boards' folder is compiled into volfix), volfix finds a board by name (--board host-headless) and its knob script beside it, and
 #      --version says the version.
 cd "$(dirname "$0")/../.." || exit 2
 build=${BUILD:-build}
@@ -96,7 +96,8 @@ fi
 
 # 2. a PREFIX of its own: volfix finds its boards by name
 own=$tmp/usr
-if ! make --no-print-directory -j"$jobs" BUILD="$tmp/build" OPT=-O0 PREFIX="$own" install >"$tmp/own.log" 2>&1; then
+if ! make --no-print-directory -j"$jobs" BUILD="$tmp/build" OPT=-O0 EXTRA_CFLAGS=-g0 PREFIX="$own" install \
+    >"$tmp/own.log" 2>&1; then
     fail "make install PREFIX=$own" "$(grep -m 3 -iE 'error|no rule' "$tmp/own.log" | tr '\n' ' ')"
     exit 0
 fi

@@ -10,7 +10,8 @@
 #   3. umockdev arrives: make rebuilds test_display_gud_usb and nothing else, and the suite passes;
 #   4. make clean removes every folder the builds made.
 #
-# The builds are at -O0 (OPT): what is checked is the Makefile, and they are the test's cost.
+# The builds are at -O0 without debugging information: what is checked is the Makefile, and they are the test's
+# cost.
 # Usage: tests/build/late_package.sh [TREE]   (TREE: the checkout whose Makefile is tested, default this one)
 cd "$(dirname "$0")/../.." || exit 2
 here=$(pwd)
@@ -50,7 +51,7 @@ unset BUILD SAN MAKEFLAGS MFLAGS
 build() { # PC_DIR LOG [TARGET...]: make at -O0 with pkg-config seeing PC_DIR
     pc=$1 log=$2
     shift 2
-    PKG_CONFIG_LIBDIR=$pc make -j"$jobs" OPT=-O0 "$@" >"$log" 2>&1
+    PKG_CONFIG_LIBDIR=$pc make -j"$jobs" OPT=-O0 EXTRA_CFLAGS=-g0 "$@" >"$log" 2>&1
 }
 # the files a build wrote since the marker: objects, libraries and programs (not stamps, dependency files)
 since() { find build -type f -newer "$1" ! -name '*.d' ! -path 'build/config*' | sort; }
@@ -89,8 +90,8 @@ core_after=$(ls -l --time-style=+%s.%N build/core/*.o 2>/dev/null | awk '{ print
 
 # the port library is a clean build's with these packages
 symbols() { nm -g --defined-only "$1" 2>/dev/null | awk 'NF == 3 { print $3 }' | sort; }
-PKG_CONFIG_LIBDIR=$tmp/pc-no-umockdev make -j"$jobs" OPT=-O0 BUILD=build-clean build-clean/libvolfix-port.a \
-    >"$tmp/clean.log" 2>&1
+PKG_CONFIG_LIBDIR=$tmp/pc-no-umockdev make -j"$jobs" OPT=-O0 EXTRA_CFLAGS=-g0 BUILD=build-clean \
+    build-clean/libvolfix-port.a >"$tmp/clean.log" 2>&1
 symbols build/libvolfix-port.a >"$tmp/late.syms"
 symbols build-clean/libvolfix-port.a >"$tmp/clean.syms"
 if [ -s "$tmp/clean.syms" ] && cmp -s "$tmp/late.syms" "$tmp/clean.syms"; then
