@@ -578,7 +578,7 @@ uninstall:
 # Every folder the build makes: this build's, its siblings (-asan, -aarch64, -armhf), the fuzz and firmware
 # builds, and the demo's and the study's output.
 clean:
-	rm -rf $(BUILD) $(BUILD)-* build-* $(FUZZ_BUILD) $(MCU_BUILD) out
+	rm -rf $(sort $(BUILD) $(BUILD)-* build-* $(FUZZ_BUILD) $(MCU_BUILD) out)
 
 # The compiler's header dependencies of every object and program this Makefile builds.
 DEP_FILES := $(addsuffix .d,$(CORE_OBJ) $(PORT_OBJ) $(SIM_OBJ) $(BUILD)/$(SIM_MAIN:.c=.o) $(VIEWER_OBJ) $(TEST_LIB) \
