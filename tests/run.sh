@@ -3,7 +3,8 @@
 # tests/long boot a VM or run for minutes and have their own targets, make test-hw and make test-long), TEST_JOBS
 # at a time (default: the processors online), the slowest of the last run first. Each suite writes to a file of
 # its own; when it ends, its failures and skips are printed in one piece, so suites running side by side never
-# mix their lines.
+# mix their lines. A shell suite with a line "# run alone: WHY" (one that times what it checks) runs first, by
+# itself.
 #
 # A case prints "ok - NAME", "not ok - NAME: why", or "skip - NAME: why, and the package that would let it run";
 # "ok - NAME # skip ..." counts as skipped, not passed. A suite that dies without saying why is one failure. A
@@ -84,7 +85,10 @@ times=$BUILD/tests/durations
 [ -f "$times" ] || times=/dev/null
 awk 'FILENAME == ARGV[1] { t[$2] = $1; next } { print (($0 in t) ? t[$0] : 1000000000), $0 }' "$times" \
     "$results/suites" | sort -k1,1nr -k2 | cut -d' ' -f2- >"$results/order"
-tr '\n' '\0' <"$results/order" | xargs -0 -n 1 -P "$jobs" sh tests/run.sh --one "$results"
+grep -l '^# run alone: ' $(grep '\.sh$' "$results/order") /dev/null 2>/dev/null >"$results/alone"
+for suite in $(cat "$results/alone"); do sh tests/run.sh --one "$results" "$suite"; done
+grep -vxF -f "$results/alone" "$results/order" | tr '\n' '\0' |
+    xargs -0 -n 1 -P "$jobs" sh tests/run.sh --one "$results"
 
 cat "$results"/*.lines >"$results/all" 2>/dev/null
 passed=$(grep '^ok - ' "$results/all" | grep -vc ' # skip')

@@ -3,6 +3,8 @@
 # SDL input backend, a screenshot of the screen shows the window holding exactly the picture volfix-sim
 # renders for the logged view, and Escape (the board's quit button) ends it.
 # Needs xvfb-run, xdotool and ImageMagick's import and convert (make test installs them: tools/deps.sh).
+# run alone: keys are typed against the clock (xdotool, waits of a few seconds), which suites running beside it
+# on the same processors can outrun (tests/run.sh).
 cd "$(dirname "$0")/../.." || exit 2
 build=${BUILD:-build}
 viewer=$build/volfix sim=$build/volfix-sim

@@ -4,6 +4,8 @@
 # pixel for pixel, previews (--downsample 2) and full-quality frames alike. Also: frames only when something
 # changes, the last picture is full quality at the expected angles, SIGTERM leaves cleanly, and bad input gets
 # one line naming what was wrong.
+# run alone: the level session needs a frame within the 40 ms the knob rests at the top of its swing, which
+# suites running beside it on the same processors can take away (tests/run.sh).
 cd "$(dirname "$0")/../.." || exit 2
 build=${BUILD:-build}
 viewer=$build/volfix sim=$build/volfix-sim
