@@ -85,6 +85,7 @@ times=$BUILD/tests/durations
 [ -f "$times" ] || times=/dev/null
 awk 'FILENAME == ARGV[1] { t[$2] = $1; next } { print (($0 in t) ? t[$0] : 1000000000), $0 }' "$times" \
     "$results/suites" | sort -k1,1nr -k2 | cut -d' ' -f2- >"$results/order"
+# shellcheck disable=SC2046 # suite paths have no spaces
 grep -l '^# run alone: ' $(grep '\.sh$' "$results/order") /dev/null 2>/dev/null >"$results/alone"
 for suite in $(cat "$results/alone"); do sh tests/run.sh --one "$results" "$suite"; done
 grep -vxF -f "$results/alone" "$results/order" | tr '\n' '\0' |
