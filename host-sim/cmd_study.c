@@ -28,7 +28,8 @@ static const char usage[] =
     "board and for a microcontroller with 256 KB of RAM.\n\n"
     "  --quick              the subset that runs in make test (under two minutes)\n"
     "  -o DIR               where to write (created)\n"
-    "  --threads N          threads for the ground truth (default 2)\n";
+    "  --threads N          threads for the ground truth (default 2)\n"
+    "The sample volumes (neghip, engine, bucky, ...) come from the folder $VOLFIX_DATA, when it is set.\n";
 
 typedef struct sweep_ctx {
     study_t *st;
@@ -242,7 +243,14 @@ int sim_cmd_study(int argc, char **argv)
     }
     st->started_ms = vfp_now_ms();
     st->progress_tty = isatty(2);
-    const char *data = getenv("VOLFIX_DATA") ? getenv("VOLFIX_DATA") : "../shared/data";
+    /* The sample volumes' folder comes from the environment only (make sets it): without it the study says so
+     * and measures the phantoms alone. */
+    const char *data = getenv("VOLFIX_DATA");
+    if (!data || !data[0]) {
+        fprintf(stderr, "volfix-sim study: VOLFIX_DATA is not set: the sample volumes are left out (set it to "
+                        "their folder)\n");
+        data = NULL;
+    }
     char path[1024];
     sweep_ctx_t c = {.st = st};
     const uint32_t small = 256;
@@ -331,8 +339,8 @@ int sim_cmd_study(int argc, char **argv)
     for (size_t i = 0; i < sizeof shared / sizeof shared[0] && !c.failed; i++) {
         if (st->quick && !shared[i].quick)
             continue;
-        snprintf(path, sizeof path, "%s/%s", data, shared[i].file);
-        if (!exists(path))
+        snprintf(path, sizeof path, "%s/%s", data ? data : "", shared[i].file);
+        if (!data || !exists(path))
             continue;
         int s = study_add_scene(st, shared[i].label, path, shared[i].preset, shared[i].az, shared[i].el, 1, small,
                                 c.err, sizeof c.err);
@@ -349,8 +357,8 @@ int sim_cmd_study(int argc, char **argv)
     /* The microcontroller's scene (boards/mps2-an386: bucky at 64x64) with the table it can hold, one and two
      * rays, whole and partial slabs (what the options are worth where a voxel covers about one output pixel), and
      * each candidate configuration for such a board. */
-    snprintf(path, sizeof path, "%s/bucky.nhdr", data);
-    if (!c.failed && exists(path)) {
+    snprintf(path, sizeof path, "%s/bucky.nhdr", data ? data : "");
+    if (!c.failed && data && exists(path)) {
         int s = study_add_scene(st, "bucky-sharp-64", path, "sharp", 30, 20, 1, 64, c.err, sizeof c.err);
         if (s < 0)
             c.failed = 1;
@@ -377,8 +385,8 @@ int sim_cmd_study(int argc, char **argv)
     for (size_t v = 0; v < 5 && !c.failed; v++) {
         if (st->quick && v != 1 && v != 2)
             continue;
-        snprintf(path, sizeof path, "%s/%s", data, fixed_volumes[v]);
-        if (!exists(path))
+        snprintf(path, sizeof path, "%s/%s", data ? data : "", fixed_volumes[v]);
+        if (!data || !exists(path))
             continue;
         for (int w = 0; w < 5 && !c.failed; w++) {
             char label[64];

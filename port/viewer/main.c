@@ -11,11 +11,19 @@
 
 #include "viewer.h"
 
+/* Where a board named without a slash (--board rpi4-spi-st7789) is looked for: the installed boards, set by the
+ * Makefile from PREFIX. */
+#ifndef VFP_BOARD_DIR
+#define VFP_BOARD_DIR "/usr/local/share/volfix/boards"
+#endif
+
 static const char usage[] =
-    "usage: volfix --board FILE VOLUME [options]\n"
+    "usage: volfix --board BOARD VOLUME [options]\n"
     "Show VOLUME on the board's display and turn it with the board's knobs (boards/README.md). While a knob\n"
     "turns, frames come from a half-resolution copy; full quality follows once the knobs rest.\n\n"
-    "  --board FILE         the board: display, inputs, what each knob and button does (required)\n"
+    "  --board BOARD        the board: display, inputs, what each knob and button does (required); a path\n"
+    "                       with a slash is a board file, a name (rpi4-spi-st7789) one of the installed boards\n"
+    "                       in " VFP_BOARD_DIR "\n"
     "  --preset NAME        transfer function to start with: ramp (default), sharp, ct-bone, ct-skin-bone or\n"
     "                       mr-brain; the preset button cycles through them all\n"
     "  --tf FILE            start with a transfer-function file (the preset button cycles it and the presets)\n"
@@ -36,6 +44,7 @@ static const char usage[] =
     "                       render options that give the same pixels\n"
     "  --frames N           leave after N frames (long runs and tests)\n"
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]   for raw voxel files\n"
+    "  --version            print the version and leave\n"
     "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N. Ctrl-C quits.\n";
 
 static vfp_status_t bad(const char *option, const char *value, const char *expected)
@@ -55,6 +64,7 @@ static vfp_status_t parse_int(const char *text, int lo, int hi, int *out)
 }
 
 typedef struct options {
+    char board_path[1024]; /* --board NAME: the installed board's file */
     const char *board, *volume, *preset, *tf, *window, *script, *device, *log;
     vf_mode_t mode;
     double view[3], zoom;
@@ -77,6 +87,9 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
         int takes = 1;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             fputs(usage, stdout);
+            return VFP_HELP_SHOWN;
+        } else if (!strcmp(a, "--version")) {
+            printf("volfix %s\n", vf_version());
             return VFP_HELP_SHOWN;
         } else if (!strcmp(a, "--board") && v) {
             o->board = v;
@@ -160,9 +173,24 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
         i += takes;
     }
     if (!o->board || !o->volume) {
-        fprintf(stderr, "volfix: %s (usage: volfix --board FILE VOLUME [options]; see --help)\n",
+        fprintf(stderr, "volfix: %s (usage: volfix --board BOARD VOLUME [options]; see --help)\n",
                 !o->board ? "no board given" : "no volume given");
         return VFP_ERR;
+    }
+    if (!strchr(o->board, '/')) {
+        size_t n = strlen(o->board);
+        const char *ext = n > 6 && !strcmp(o->board + n - 6, ".board") ? "" : ".board";
+        if (!n || snprintf(o->board_path, sizeof o->board_path, "%s/%s%s", VFP_BOARD_DIR, o->board, ext) >=
+                      (int)sizeof o->board_path) {
+            fprintf(stderr, "volfix: --board '%s': expected a board name or a path to a board file\n", o->board);
+            return 2;
+        }
+        if (access(o->board_path, R_OK) != 0) {
+            fprintf(stderr, "volfix: --board %s: no board of that name in %s (a board file's path needs a slash: "
+                    "./%s)\n", o->board, VFP_BOARD_DIR, o->board);
+            return 2;
+        }
+        o->board = o->board_path;
     }
     if (o->preset && o->tf) {
         fprintf(stderr, "volfix: give --preset or --tf, not both\n");
