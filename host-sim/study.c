@@ -64,10 +64,12 @@ int study_add_scene(study_t *st, const char *label, const char *volume, const ch
     snprintf(size_text, sizeof size_text, "%ux%u", size, size);
     /* a preset name, or "file:PATH" for a transfer-function file */
     int is_file = strncmp(sc->preset, "file:", 5) == 0;
+    /* unlit: the study measures the unlit algorithm, whatever a preset's own shading (study_lit.c lights its
+     * scenes itself) */
     char *argv[] = {sc->volume, is_file ? "--tf" : "--preset", is_file ? sc->preset + 5 : sc->preset, "--size",
-                    size_text};
+                    size_text, "--shade", "none"};
     sim_opts_t o;
-    if (sim_parse(&o, 5, argv, SIM_OPT_SCENE, "")) {
+    if (sim_parse(&o, 7, argv, SIM_OPT_SCENE, "")) {
         snprintf(err, errlen, "%s: bad scene", label);
         return -1;
     }
