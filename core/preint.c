@@ -27,6 +27,26 @@
  * integer t - t'. A join adds the two: C + t = C_x + t_x (C_y + t_y) <= 1 + e_x + e_y. A window's front colour
  * joins a suffix grown at its seen end with a prefix grown at its far end (e <= 0), its back colour the other way
  * round, so e < r. Both directions use the one t, which the bounds allow.
+ *
+ * The front-weighted (lit) outputs (docs/algorithm.md section 7: D_f = sum_k T_k C_k (1 - theta_k) per channel and S_f
+ * = sum_k T_k alpha_k (1 - theta_k), theta_k = (k + t(x_k)) / r) are D_f = C - M / r and S_f = A - M_A / r, where M =
+ * sum_k T_k C_k (k + t(x_k)) and M_A = sum_k T_k alpha_k (k + t(x_k)) are the emission-position moments seen from the
+ * entry's front, positions in intervals. So each run carries, besides its colours, the moments seen from its front and
+ * from its back (about the end that direction sees first), opacity's too, in Q.22 (they reach r < 2^10, so that a
+ * product with a Q.30 factor stays below 2^64). With g_v = alpha_v t(x_v) of the diagonal's piece length (tables.h,
+ * once per interval and diagonal beside t_v), v joins a run x
+ *   at the end the moment is seen from:  M' = t_v (M + C) + w g_v        (x's emissions one interval deeper)
+ *   at the far end, behind n intervals:  M' = M + w (n (t - t') + t g_v) (v's emission, x letting t - t' through)
+ * and for M_A the same with w = 1 and C = A = 1 - t. Two runs join as colours do, the one behind taken the front one's
+ * length deeper: M = M_x + t_x (M_y + n_x C_y). block_sparse's runs skip the intervals that change no bit (t = 1, and
+ * then g = 0 too) but count them in the positions; where it copies a window's entries to the next, the lit values move:
+ * the moments shift by one interval's worth of the window's colour instead. Each step rounds once to Q.22, so a moment
+ * is off by about r 2^-22 at most and M / r by 2^-22, a 128th of an LSB of Q1.15 (tests/core/test_lit_tables.c measures
+ * every lit value within 0.51 LSB of the exact one). The bound: D_f is C - M / r worked out on C's own unrounded value
+ * (window_t) and clamped below at that form's 0, deliberately: M / r is below C exactly (positions k + t(x) < r) but
+ * the roundings of a moment can take it a few LSB of Q.30 past a C of a few LSB. Then D_f <= C and S_f <= a hold in
+ * every format, rounded the same way by monotonic conversions, and no lit value exceeds 1.0 by more than its entry
+ * does.
  */
 #include "arena.h"
 #include "fixmath.h"
@@ -45,7 +65,12 @@ typedef struct diagonal {
     vfi_suffix_t *suf;        /* a block's suffixes, by position in visible */
     uint32_t n, r;            /* entries a table axis; intervals a window */
     vfi_table_out_t out;
+    vfi_suffix_lit_t *suf_lit; /* lit builds: the suffixes' moments, at the same positions */
+    uint64_t recip;           /* lit builds: round(2^40 / r), so that M / r = M recip 2^-40 */
 } diagonal_t;
+
+/* A run's emission-position moments while it grows (lit builds), Q.22. */
+typedef vfi_suffix_lit_t moments_t;
 
 /* A run in Q.30 (block_sparse). */
 typedef struct pair {
@@ -70,11 +95,16 @@ typedef struct window {
 static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
 static void block_dense_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
 static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi);
+static void block_dense_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
+static void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
+static void block_sparse_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi);
 static void store_pair_q30(vfi_table_out_t out, size_t up, size_t down, uint32_t r, uint32_t g, uint32_t b,
                            uint32_t br, uint32_t bg, uint32_t bb, uint32_t a);
 static uint32_t list_intervals(const vfi_classify_t *cls, const vfi_table_scratch_t *scratch, bool *grey);
 static void transmittances(const vfi_table_scratch_t *scratch, uint32_t visible_count, uint32_t count,
                            uint64_t length_q28);
+static void transmittances_lit(const vfi_table_scratch_t *scratch, uint32_t visible_count, uint32_t count,
+                               uint64_t length_q28);
 static uint64_t piece_length_q28(uint32_t slab_q16, uint32_t r);
 
 size_t vfi_table_scratch_bytes(uint32_t n)
@@ -85,6 +115,7 @@ size_t vfi_table_scratch_bytes(uint32_t n)
 
 vf_status_t vfi_table_scratch_alloc(vfi_table_scratch_t *scratch, uint32_t n, vf_arena_t *arena)
 {
+    scratch->suffix_lit = NULL;
     scratch->interval = vfi_arena_alloc(arena, sizeof(vfi_interval_t) * (n + 1));
     scratch->suffix = vfi_arena_alloc(arena, sizeof(vfi_suffix_t) * (n - 1));
     scratch->visible = vfi_arena_alloc(arena, sizeof(uint16_t) * (n - 1));
@@ -93,21 +124,27 @@ vf_status_t vfi_table_scratch_alloc(vfi_table_scratch_t *scratch, uint32_t n, vf
                                                                                             : VF_ERR_NOMEM;
 }
 
-/* Diagonal r (1 .. n - 1), both triangles, once list_intervals has run: transmittances for pieces of d / r, then
- * the blocks. */
-static void build_diagonal(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
-                           uint32_t visible_count, bool grey, vfi_table_out_t out, uint32_t r)
+/* The record of diagonal r (1 .. n - 1) once list_intervals has run. */
+static inline diagonal_t diagonal(const vfi_table_scratch_t *scratch, vfi_table_out_t out, uint32_t n, uint32_t r)
 {
-    const uint32_t n = cls->n, count = n - 1; /* count intervals */
-    const uint16_t *first_visible = scratch->first_visible;
     diagonal_t d;
     d.iv = scratch->interval + 1;
     d.visible = scratch->visible;
-    d.first_visible = first_visible;
+    d.first_visible = scratch->first_visible;
     d.suf = scratch->suffix;
     d.n = n;
     d.out = out;
     d.r = r;
+    return d;
+}
+
+/* Diagonal r, both triangles: transmittances for pieces of d / r, then the blocks. */
+static void build_diagonal(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
+                           uint32_t visible_count, bool grey, vfi_table_out_t out, uint32_t r)
+{
+    const uint32_t count = cls->n - 1; /* count intervals */
+    const uint16_t *first_visible = scratch->first_visible;
+    const diagonal_t d = diagonal(scratch, out, cls->n, r);
     transmittances(scratch, visible_count, count, piece_length_q28(slab_q16, r));
     /* The windows f .. f+r-1 start at f = 0 .. count - r; the block s0 .. s0+r-1 holds the starts s0 .. end, and
      * its visible intervals are listed at k_lo .. k_hi - 1. */
@@ -120,6 +157,28 @@ static void build_diagonal(const vfi_classify_t *cls, uint32_t slab_q16, const v
             VF_SPECIAL_LOOPS && grey ? block_dense_grey(&d, s0, end, k_lo) : block_dense(&d, s0, end, k_lo);
         else
             block_sparse(&d, s0, end, k_lo, k_hi);
+    }
+}
+
+/* The same with the front-weighted outputs (lit builds): alpha t(x) beside each transmittance, the lit blocks.
+ * Kept apart from build_diagonal, not a shared body with a flag: so inlined, the unlit builder's loop came out
+ * 0.7 to 1.1% longer (callgrind, 256 entries, presets ct-skin-bone, mr-brain, ct-bone). */
+static void build_diagonal_lit(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
+                               uint32_t visible_count, bool grey, vfi_table_out_t out, uint32_t r)
+{
+    const uint32_t count = cls->n - 1;
+    const uint16_t *first_visible = scratch->first_visible;
+    diagonal_t d = diagonal(scratch, out, cls->n, r);
+    d.suf_lit = scratch->suffix_lit;
+    d.recip = vfi_udiv64((UINT64_C(1) << 40) + r / 2, r);
+    transmittances_lit(scratch, visible_count, count, piece_length_q28(slab_q16, r));
+    for (uint32_t s0 = 0; s0 + r <= count; s0 += r) {
+        const uint32_t end = s0 + r - 1 < count - r ? s0 + r - 1 : count - r;
+        const uint32_t k_lo = first_visible[s0], k_hi = first_visible[s0 + r];
+        if (k_hi - k_lo == r && first_visible[end + r] - k_hi == end - s0)
+            VF_SPECIAL_LOOPS && grey ? block_dense_grey_lit(&d, s0, end, k_lo) : block_dense_lit(&d, s0, end, k_lo);
+        else
+            block_sparse_lit(&d, s0, end, k_lo, k_hi);
     }
 }
 
@@ -136,8 +195,12 @@ void vfi_preint_table_part(const vfi_classify_t *cls, uint32_t slab_q16, const v
         vfi_point_entries(cls, slab_q16, out, n + 1); /* the diagonal */
     bool grey;
     const uint32_t visible_count = list_intervals(cls, scratch, &grey);
-    for (uint32_t r = part + 1; r < n; r += parts)
-        build_diagonal(cls, slab_q16, scratch, visible_count, grey, out, r);
+    if (vfi_table_out_lit(out))
+        for (uint32_t r = part + 1; r < n; r += parts)
+            build_diagonal_lit(cls, slab_q16, scratch, visible_count, grey, out, r);
+    else
+        for (uint32_t r = part + 1; r < n; r += parts)
+            build_diagonal(cls, slab_q16, scratch, visible_count, grey, out, r);
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
@@ -241,6 +304,165 @@ static VF_ALWAYS_INLINE void run_add_back(run_t *x, const vfi_interval_t *v, boo
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
+/* Emission-position moments (lit builds; the header comment gives the arithmetic and its bounds). */
+
+#define HALF_Q22_IN_Q60 (UINT64_C(1) << 37)
+
+static inline uint64_t q22_of_q30(uint64_t v)
+{
+    return (v + 128u) >> 8;
+}
+
+static inline moments_t no_moments(void)
+{
+    moments_t m;
+    for (int c = 0; c < 4; c++) /* field by field, as empty_pair */
+        m.front[c] = m.back[c] = 0;
+    return m;
+}
+
+/* The colour block_dense's run is seen with from its growing end, from x = (C - w) 2^30 + 2^29 with w the weight
+ * of the interval that joins next: C in Q.22. */
+static inline uint64_t dense_colour_q22(int64_t x, uint32_t w)
+{
+    return ((uint64_t)(x + ((int64_t)w << 30)) + HALF_Q22_IN_Q60) >> 38;
+}
+
+/* Interval v (transmittance t_v, depth-weighted opacity g_v = alpha_v t(x_v)) joins a run, whose transmittance
+ * goes from t0 to t, at the front (at_front) or at the back. The moments about the end v joins at take every
+ * emission one interval deeper behind v, and v's own: m' = t_v (m + C) + w g_v, where shift[c] = gap C (C the
+ * colour, shift[3] gap A the opacity, seen from that end before v joins, Q.22; gap 1 unless intervals that change
+ * no bit lie between). The moments about the other end take v's emission behind the run's depth intervals,
+ * T_x alpha_v w (depth + t(x_v)) = w h with h = depth (t0 - t) + t0 g_v, the same h for every channel. */
+static VF_ALWAYS_INLINE void moments_add(moments_t *m, bool at_front, const uint64_t shift[4], uint32_t t0,
+                                         uint32_t t, const vfi_interval_t *v, uint32_t depth, bool grey)
+{
+    uint64_t *near = at_front ? m->front : m->back, *far = at_front ? m->back : m->front;
+    const uint64_t h = q22_of_q30((uint64_t)depth * (t0 - t) + (((uint64_t)t0 * v->g + HALF_Q30) >> 30));
+    for (int c = 0; c < (grey ? 1 : 3); c++) {
+        near[c] = (((near[c] + shift[c]) * v->t + HALF_Q30) >> 30) +
+                  (((uint64_t)v->w[c] * v->g + HALF_Q22_IN_Q60) >> 38);
+        far[c] += ((uint64_t)v->w[c] * h + HALF_Q30) >> 30;
+    }
+    near[3] = (((near[3] + shift[3]) * v->t + HALF_Q30) >> 30) + q22_of_q30(v->g);
+    far[3] += h;
+}
+
+/* block_dense's run_add_front and run_add_back with the moments: gap 1, the colours from x before v joins. */
+static VF_ALWAYS_INLINE void dense_add_lit(run_t *x, moments_t *m, const vfi_interval_t *v, uint32_t depth,
+                                           bool at_front, bool grey)
+{
+    uint64_t shift[4];
+    const uint32_t t0 = x->t;
+    shift[0] = dense_colour_q22(x->xr, v->w[0]);
+    if (!grey) {
+        shift[1] = dense_colour_q22(x->xg, v->w[1]);
+        shift[2] = dense_colour_q22(x->xb, v->w[2]);
+    }
+    shift[3] = q22_of_q30(ONE_Q30 - t0);
+    at_front ? run_add_front(x, v, grey) : run_add_back(x, v, grey);
+    moments_add(m, at_front, shift, t0, x->t, v, depth, grey);
+}
+
+/* block_sparse's pair_add_front and pair_add_back with the moments: v at interval m_v, *end the interval that
+ * joined last at that end (the block's end when none has), depth the intervals from the run's other end. */
+static VF_ALWAYS_INLINE void sparse_add_lit(pair_t *x, moments_t *m, const vfi_interval_t *iv, uint32_t m_v,
+                                            uint32_t *end, uint32_t depth, bool at_front)
+{
+    const vfi_interval_t *v = iv + m_v;
+    const uint64_t gap = at_front ? *end - m_v : m_v - *end;
+    const uint32_t t0 = x->t;
+    uint64_t shift[4];
+    shift[0] = gap * q22_of_q30(at_front ? x->r : x->br);
+    shift[1] = gap * q22_of_q30(at_front ? x->g : x->bg);
+    shift[2] = gap * q22_of_q30(at_front ? x->b : x->bb);
+    shift[3] = gap * q22_of_q30(ONE_Q30 - t0);
+    at_front ? pair_add_front(x, v) : pair_add_back(x, v);
+    moments_add(m, at_front, shift, t0, x->t, v, depth, false);
+    *end = m_v;
+}
+
+/* C - M / r as window_t holds C (Q.60 with half an LSB of Q1.15 added), and at least that form's 0: never above
+ * C, never below 0. M / r in Q.60 is (M_q22 round(2^40 / r)) >> 2. */
+static inline uint64_t less_moment(uint64_t c, uint64_t m_q22, uint64_t recip)
+{
+    const uint64_t mr = (m_q22 * recip) >> 2;
+    return c >= mr + HALF_Q15_IN_Q60 ? c - mr : HALF_Q15_IN_Q60;
+}
+
+/* Entries up and down's front-weighted values from e (up's r, g, b, a, then down's; window_t's form). */
+static inline void store_lit_window(vfi_table_out_t out, size_t up, size_t down, const uint64_t e[8])
+{
+    if (out.lit_q15 && !out.grid_bits) {
+        uint16_t *u = out.lit_q15 + up * 4, *w = out.lit_q15 + down * 4;
+        for (int c = 0; c < 4; c++) {
+            u[c] = (uint16_t)(e[c] >> 45);
+            w[c] = (uint16_t)(e[4 + c] >> 45);
+        }
+    } else {
+        const uint64_t unhalf = HALF_Q15_IN_Q60 - HALF_Q30; /* store_window's way through Q.30 */
+        uint32_t q[8];
+        for (int c = 0; c < 8; c++)
+            q[c] = (uint32_t)((e[c] - unhalf) >> 30);
+        vfi_store_lit_q30(out, up, q[0], q[1], q[2], q[3]);
+        vfi_store_lit_q30(out, down, q[4], q[5], q[6], q[7]);
+    }
+}
+
+/* Entries up and down's front-weighted values of a window of nothing seen: 0. */
+static inline void store_nothing_seen(vfi_table_out_t out, size_t up, size_t down)
+{
+    const uint64_t zero = HALF_Q15_IN_Q60, e[8] = {zero, zero, zero, zero, zero, zero, zero, zero};
+    store_lit_window(out, up, down, e);
+}
+
+/* A window's moments as joined, about its front (up[4]: the up entry's r, g, b, a) and its back (down[4]). */
+typedef struct window_moments {
+    uint64_t up[4], down[4];
+} window_moments_t;
+
+/* Window x's front-weighted values from its moments m, stored. */
+static VF_ALWAYS_INLINE void store_lit_moments(const diagonal_t *d, const window_t *x, const window_moments_t *m,
+                                               bool grey, size_t up, size_t down)
+{
+    const uint64_t recip = d->recip, cu[3] = {x->r, x->g, x->b}, cd[3] = {x->br, x->bg, x->bb};
+    uint64_t e[8];
+    for (int c = 0; c < (grey ? 1 : 3); c++) {
+        e[c] = less_moment(cu[c], m->up[c], recip);
+        e[4 + c] = less_moment(cd[c], m->down[c], recip);
+    }
+    if (grey) {
+        e[1] = e[2] = e[0];
+        e[5] = e[6] = e[4];
+    }
+    e[3] = less_moment(x->a, m->up[3], recip);
+    e[7] = less_moment(x->a, m->down[3], recip);
+    store_lit_window(d->out, up, down, e);
+}
+
+/* The front-weighted values of window x: the suffix in front of the prefix seen from the front (up), the prefix
+ * in front of the suffix from the back (down). sf: the suffix's moments about its front (the window's front),
+ * sb about its back; pf: the prefix's about its front, pb about its back (the window's back); s_cb, p_cf: the
+ * suffix's colour seen from the back and the prefix's from the front (Q.30); ns, np their lengths. Joined, a run
+ * behind the other has its moments taken np or ns intervals deeper and seen through the other's transmittance.
+ * The moments into *m. */
+static VF_ALWAYS_INLINE void lit_window(const diagonal_t *d, const window_t *x, const uint64_t sf[4],
+                                        const uint64_t sb[4], const uint32_t s_cb[3], uint32_t st,
+                                        const uint64_t pf[4], const uint64_t pb[4], const uint32_t p_cf[3],
+                                        uint32_t pt, uint32_t ns, uint32_t np, bool grey, size_t up, size_t down,
+                                        window_moments_t *m)
+{
+    const uint64_t st64 = st, pt64 = pt;
+    for (int c = 0; c < (grey ? 1 : 3); c++) {
+        m->up[c] = sf[c] + ((st64 * (pf[c] + ns * q22_of_q30(p_cf[c])) + HALF_Q30) >> 30);
+        m->down[c] = pb[c] + ((pt64 * (sb[c] + np * q22_of_q30(s_cb[c])) + HALF_Q30) >> 30);
+    }
+    m->up[3] = sf[3] + ((st64 * (pf[3] + ns * q22_of_q30(ONE_Q30 - pt)) + HALF_Q30) >> 30);
+    m->down[3] = pb[3] + ((pt64 * (sb[3] + np * q22_of_q30(ONE_Q30 - st)) + HALF_Q30) >> 30);
+    store_lit_moments(d, x, m, grey, up, down);
+}
+
+/* ---------------------------------------------------------------------------------------------------------- */
 /* Entries. */
 
 /* The window that is suffix s in front of a prefix: s in front of it seen from the front, it in front of s seen
@@ -292,9 +514,9 @@ static inline void store_window(vfi_table_out_t out, bool q15, size_t up, size_t
     }
 }
 
-void vfi_store_entry(vfi_table_out_t out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a)
+void vfi_store_entry(const vfi_table_out_t *out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a)
 {
-    vfi_store_q30(out, entry, r, g, b, a);
+    vfi_store_q30(*out, entry, r, g, b, a);
 }
 
 /* Out of line, so that store_window stays small enough to be inlined into the loops; the values one by one, so
@@ -334,18 +556,25 @@ static inline void copy_pair(vfi_table_out_t out, size_t up, size_t down, size_t
 
 /* Every interval of the block s0 .. s0+r-1 and of the prefixes visible: the suffix from f (kept at k_lo + f - s0)
  * for f down from the block's end, then window f = the suffix from f joined with the prefix s0+r .. f+r-1.
- * The suffixes from past end (the last block of a diagonal) start no window: composited, not kept. */
+ * The suffixes from past end (the last block of a diagonal) start no window: composited, not kept. lit: the runs'
+ * moments beside them (the suffixes' kept in d->suf_lit), and each window's front-weighted values. */
 static VF_ALWAYS_INLINE void block_dense_body(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo,
-                                             bool grey)
+                                             bool grey, bool lit)
 {
+    if (!VF_LIT_TABLES) /* a build without them: the unlit code alone */
+        lit = false;
     const uint32_t n = d->n, r = d->r;
     const vfi_interval_t *v = d->iv + s0 + r - 1, *stop = d->iv + end; /* the block's last interval */
     run_t acc = empty_run(v);
+    moments_t am, pm; /* lit: the suffix's and the prefix's moments */
+    if (lit)
+        am = pm = no_moments();
+    uint32_t depth = 0; /* lit: intervals in acc */
     for (; v > stop; v--)
-        run_add_front(&acc, v, grey);
+        lit ? dense_add_lit(&acc, &am, v, depth++, true, grey) : run_add_front(&acc, v, grey);
     vfi_suffix_t *s = d->suf + k_lo + (end - s0);
     for (stop = d->iv + s0; v >= stop; v--, s--) {
-        run_add_front(&acc, v, grey);
+        lit ? dense_add_lit(&acc, &am, v, depth++, true, grey) : run_add_front(&acc, v, grey);
         /* C 2^30 + the half of Q1.15 = x + w_next 2^30 - 2^29 + the half, which is v[-1].w_q60 */
         s->front_q60[0] = (uint64_t)(acc.xr + (int64_t)v[-1].w_q60[0]);
         s->back[0] = (uint32_t)(acc.cr >> 30);
@@ -356,6 +585,8 @@ static VF_ALWAYS_INLINE void block_dense_body(const diagonal_t *d, uint32_t s0, 
             s->back[2] = (uint32_t)(acc.cb >> 30);
         }
         s->t = acc.t;
+        if (lit)
+            d->suf_lit[s - d->suf] = am;
     }
     s++;
 
@@ -364,6 +595,7 @@ static VF_ALWAYS_INLINE void block_dense_body(const diagonal_t *d, uint32_t s0, 
     const vfi_suffix_t *last = s + (end - s0);
     size_t up = (size_t)s0 * n + s0 + r, down = (size_t)(s0 + r) * n + s0;
     v = d->iv + s0 + r; /* the interval after the prefix */
+    const vfi_interval_t *prefix = v; /* lit: v - prefix intervals are in the prefix */
     run_t pre = empty_run(v);
     for (;; s++, v++) {
         const window_t x = join(s, (uint32_t)(pre.cr >> 30), (uint32_t)(pre.cg >> 30), (uint32_t)(pre.cb >> 30),
@@ -371,9 +603,17 @@ static VF_ALWAYS_INLINE void block_dense_body(const diagonal_t *d, uint32_t s0, 
                                 (uint64_t)(pre.xg + (int64_t)v->w_q60[1]), (uint64_t)(pre.xb + (int64_t)v->w_q60[2]),
                                 pre.t, grey);
         store_window(out, q15, up, down, &x);
+        if (lit) {
+            const vfi_suffix_lit_t *sl = d->suf_lit + (s - d->suf);
+            const uint32_t p_cf[3] = {(uint32_t)(pre.cr >> 30), (uint32_t)(pre.cg >> 30), (uint32_t)(pre.cb >> 30)};
+            const uint32_t np = (uint32_t)(v - prefix);
+            window_moments_t wm;
+            lit_window(d, &x, sl->front, sl->back, s->back, s->t, pm.front, pm.back, p_cf, pre.t, r - np, np, grey,
+                       up, down, &wm);
+        }
         if (s == last)
             break;
-        run_add_back(&pre, v, grey);
+        lit ? dense_add_lit(&pre, &pm, v, (uint32_t)(v - prefix), false, grey) : run_add_back(&pre, v, grey);
         up += n + 1;
         down += n + 1;
     }
@@ -381,7 +621,7 @@ static VF_ALWAYS_INLINE void block_dense_body(const diagonal_t *d, uint32_t s0, 
 
 static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
 {
-    block_dense_body(d, s0, end, k_lo, false);
+    block_dense_body(d, s0, end, k_lo, false, false);
 }
 
 /* A grey transfer function's block (every weight's three channels equal, list_intervals): the three channels are
@@ -390,25 +630,107 @@ static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t
  * without VF_SPECIAL_LOOPS. */
 static void block_dense_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
 {
-    block_dense_body(d, s0, end, k_lo, true);
+    block_dense_body(d, s0, end, k_lo, true, false);
+}
+
+static void block_dense_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
+{
+    block_dense_body(d, s0, end, k_lo, false, true);
+}
+
+static void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
+{
+    block_dense_body(d, s0, end, k_lo, true, true);
+}
+
+/* block_sparse's window f, front-weighted: the suffix from the first visible interval at or after f (listed at k,
+ * none when k = k_hi) has its front moments taken from there to f; the prefix its back moments from the back of
+ * the interval that joined it last (p_back) to the window's back. The positions count every interval, seen or
+ * not: that is why no window's lit values repeat the last one's, where its main ones do. The moments into *m;
+ * a window of nothing seen (both runs' transmittance 1, so every sum exactly 0) stores zeros and returns false. */
+static VF_ALWAYS_INLINE bool sparse_lit_window(const diagonal_t *d, const window_t *x, uint32_t s0, uint32_t f,
+                                               uint32_t k_hi, const pair_t *pre, const moments_t *pm,
+                                               uint32_t p_back, size_t up, size_t down, window_moments_t *m)
+{
+    static const uint32_t no_colour[3] = {0, 0, 0};
+    const uint32_t r = d->r, k = d->first_visible[f];
+    uint64_t sf[4], pb[4];
+    const uint64_t *sb = sf;
+    const uint32_t *s_cb = no_colour;
+    uint32_t st = ONE_Q30;
+    if (k < k_hi) {
+        const vfi_suffix_t *s = &d->suf[k];
+        st = s->t;
+        if (st != ONE_Q30) {
+            const vfi_suffix_lit_t *sl = &d->suf_lit[k];
+            const uint64_t delta = d->visible[k] - f;
+            for (int c = 0; c < 3; c++) /* block_sparse keeps the colour as (C << 30) + the half */
+                sf[c] = sl->front[c] + delta * q22_of_q30((s->front_q60[c] - HALF_Q15_IN_Q60) >> 30);
+            sf[3] = sl->front[3] + delta * q22_of_q30(ONE_Q30 - st);
+            sb = sl->back;
+            s_cb = s->back;
+        }
+    }
+    if (st == ONE_Q30) {
+        if (pre->t == ONE_Q30) {
+            store_nothing_seen(d->out, up, down);
+            return false;
+        }
+        sf[0] = sf[1] = sf[2] = sf[3] = 0;
+        sb = sf;
+        s_cb = no_colour;
+    }
+    const uint64_t eps = f + r - 1 - p_back;
+    pb[0] = pm->back[0] + eps * q22_of_q30(pre->br);
+    pb[1] = pm->back[1] + eps * q22_of_q30(pre->bg);
+    pb[2] = pm->back[2] + eps * q22_of_q30(pre->bb);
+    pb[3] = pm->back[3] + eps * q22_of_q30(ONE_Q30 - pre->t);
+    const uint32_t p_cf[3] = {pre->r, pre->g, pre->b};
+    lit_window(d, x, sf, sb, s_cb, st, pm->front, pb, p_cf, pre->t, s0 + r - f, f - s0, false, up, down, m);
+    return true;
+}
+
+/* The next window of a run block_sparse copies (the interval it drops and the one it adds both seen through): every
+ * emission one interval nearer its front and one farther from its back, m->up less the colours and opacity seen
+ * from the front, m->down more those from the back (not below 0: the rounding of those may take a little more
+ * than the moment holds, where all of it is next to the front). */
+static VF_ALWAYS_INLINE void sparse_lit_next(const diagonal_t *d, const window_t *x, window_moments_t *m,
+                                             size_t up, size_t down)
+{
+    const uint64_t cu[4] = {x->r, x->g, x->b, x->a}, cd[4] = {x->br, x->bg, x->bb, x->a};
+    for (int c = 0; c < 4; c++) {
+        const uint64_t u = (cu[c] - HALF_Q15_IN_Q60 + HALF_Q22_IN_Q60) >> 38; /* Q.60 with the half, to Q.22 */
+        m->up[c] = m->up[c] > u ? m->up[c] - u : 0;
+        m->down[c] += (cd[c] - HALF_Q15_IN_Q60 + HALF_Q22_IN_Q60) >> 38;
+    }
+    store_lit_moments(d, x, m, false, up, down);
 }
 
 /* The same with invisible intervals (t = 1; any interval with t = 1 changes no bit of a composite, so skipping
  * it is exact, and for transfer functions with narrow peaks that is most of the work). Suffixes are kept for
  * the visible intervals only, k_lo .. k_hi - 1; the suffix from f is the one from the first visible interval at
  * or after f, or the empty run. While the interval a window drops and the one the next adds both have t = 1, the
- * next window's entries are this one's. */
-static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
+ * next window's entries are this one's (but for their front-weighted values, which lit works out for each). */
+static VF_ALWAYS_INLINE void block_sparse_body(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo,
+                                              uint32_t k_hi, bool lit)
 {
+    if (!VF_LIT_TABLES) /* a build without them: the unlit code alone */
+        lit = false;
     const uint32_t n = d->n, r = d->r;
     const vfi_interval_t *iv = d->iv;
     const uint16_t *visible = d->visible, *first_visible = d->first_visible;
     uint32_t k = k_hi, k_end = first_visible[end] + 1u; /* the suffixes from k_end on start no window */
     pair_t acc = empty_pair();
+    moments_t am, pm; /* lit: the suffix's and the prefix's moments */
+    if (lit)
+        am = pm = no_moments();
+    uint32_t s_front = s0 + r, p_back = s0 + r - 1; /* lit: the interval that joined each last */
     for (; k > k_end; k--)
-        pair_add_front(&acc, iv + visible[k - 1]);
+        lit ? sparse_add_lit(&acc, &am, iv, visible[k - 1], &s_front, s0 + r - 1 - visible[k - 1], true)
+            : pair_add_front(&acc, iv + visible[k - 1]);
     for (; k > k_lo; k--) {
-        pair_add_front(&acc, iv + visible[k - 1]);
+        lit ? sparse_add_lit(&acc, &am, iv, visible[k - 1], &s_front, s0 + r - 1 - visible[k - 1], true)
+            : pair_add_front(&acc, iv + visible[k - 1]);
         vfi_suffix_t *s = &d->suf[k - 1];
         s->front_q60[0] = ((uint64_t)acc.r << 30) + HALF_Q15_IN_Q60;
         s->front_q60[1] = ((uint64_t)acc.g << 30) + HALF_Q15_IN_Q60;
@@ -417,6 +739,8 @@ static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_
         s->back[1] = acc.bg;
         s->back[2] = acc.bb;
         s->t = acc.t;
+        if (lit)
+            d->suf_lit[k - 1] = am;
     }
 
     const vfi_table_out_t out = d->out;
@@ -433,19 +757,35 @@ static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_
                                 ((uint64_t)pre.br << 30) + HALF_Q15_IN_Q60, ((uint64_t)pre.bg << 30) + HALF_Q15_IN_Q60,
                                 ((uint64_t)pre.bb << 30) + HALF_Q15_IN_Q60, pre.t, false);
         store_window(out, q15, up, down, &x);
+        window_moments_t wm;
+        const bool seen = lit && sparse_lit_window(d, &x, s0, f, k_hi, &pre, &pm, p_back, up, down, &wm);
         for (; f < end && iv[f].t == ONE_Q30 && iv[f + r].t == ONE_Q30; f++) {
             up += n + 1;
             down += n + 1;
             copy_pair(out, up, down, n + 1);
+            if (seen)
+                sparse_lit_next(d, &x, &wm, up, down);
+            else if (lit)
+                store_nothing_seen(d->out, up, down);
         }
         if (f == end)
             break;
         if (iv[f + r].t != ONE_Q30)
-            pair_add_back(&pre, iv + f + r);
+            lit ? sparse_add_lit(&pre, &pm, iv, f + r, &p_back, f - s0, false) : pair_add_back(&pre, iv + f + r);
         f++;
         up += n + 1;
         down += n + 1;
     }
+}
+
+static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
+{
+    block_sparse_body(d, s0, end, k_lo, k_hi, false);
+}
+
+static void block_sparse_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
+{
+    block_sparse_body(d, s0, end, k_lo, k_hi, true);
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
@@ -491,24 +831,42 @@ static uint32_t list_intervals(const vfi_classify_t *cls, const vfi_table_scratc
 }
 
 /* The listed intervals' transmittance exp(-mean L) for pieces of length L (Q.28, in d_ref): the brute force's
- * 1 - opacity, to the bit (the same exponential, inline). */
-static inline void transmittance(const uint32_t *exp_tables, vfi_interval_t *v, uint64_t length_q28)
+ * 1 - opacity, to the bit (the same exponential, inline); lit: and alpha t(x) of the same x. */
+static VF_ALWAYS_INLINE void transmittance(const uint32_t *exp_tables, vfi_interval_t *v, uint64_t length_q28,
+                                           bool lit)
 {
     /* the mean extinction in Q.24 times the length in Q.28: Q.52, back to Q.28 */
-    v->t = vfi_exp_neg_q28_with(exp_tables, ((uint64_t)v->mean_q24 * length_q28 + (UINT64_C(1) << 23)) >> 24);
+    const uint64_t x = ((uint64_t)v->mean_q24 * length_q28 + (UINT64_C(1) << 23)) >> 24;
+    v->t = vfi_exp_neg_q28_with(exp_tables, x);
+    if (VF_LIT_TABLES && lit)
+        v->g = vfi_emission_depth_q30(x, v->t);
 }
 
-static void transmittances(const vfi_table_scratch_t *scratch, uint32_t visible_count, uint32_t count,
-                           uint64_t length_q28)
+static VF_ALWAYS_INLINE void transmittances_body(const vfi_table_scratch_t *scratch, uint32_t visible_count,
+                                                 uint32_t count, uint64_t length_q28, bool lit)
 {
     const uint32_t *exp_tables = vfi_exp_neg_tables();
     vfi_interval_t *iv = scratch->interval + 1;
     if (visible_count == count) /* all listed: no list to read */
         for (vfi_interval_t *v = iv; v < iv + count; v++)
-            transmittance(exp_tables, v, length_q28);
+            transmittance(exp_tables, v, length_q28, lit);
     else
         for (uint32_t k = 0; k < visible_count; k++)
-            transmittance(exp_tables, &iv[scratch->visible[k]], length_q28);
+            transmittance(exp_tables, &iv[scratch->visible[k]], length_q28, lit);
+}
+
+/* Not inlined by force: gcc inlines each into its one caller, after its own optimisations, which here leave the
+ * unlit builder's loops some instructions shorter (callgrind) than inlining the body first. */
+static void transmittances(const vfi_table_scratch_t *scratch, uint32_t visible_count, uint32_t count,
+                           uint64_t length_q28)
+{
+    transmittances_body(scratch, visible_count, count, length_q28, false);
+}
+
+static void transmittances_lit(const vfi_table_scratch_t *scratch, uint32_t visible_count, uint32_t count,
+                               uint64_t length_q28)
+{
+    transmittances_body(scratch, visible_count, count, length_q28, true);
 }
 
 /* d / r in Q.28 from d in Q16.16, rounded: (d 2^12 + r / 2) / r. Long division in 16-bit digits, so that each
@@ -557,7 +915,11 @@ void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, ui
 
 void vfi_preint_demand_diagonal(const vfi_demand_t *demand, uint32_t f, uint32_t b)
 {
-    build_diagonal(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->grey, demand->out,
-                   f > b ? f - b : b - f);
+    if (vfi_table_out_lit(demand->out))
+        build_diagonal_lit(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->grey,
+                           demand->out, f > b ? f - b : b - f);
+    else
+        build_diagonal(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->grey,
+                       demand->out, f > b ? f - b : b - f);
 }
 #endif

@@ -21,6 +21,20 @@ static bool on_demand(const vf_renderer_t *r);
 static bool tables_complete(const vf_renderer_t *r);
 static inline vfi_table_out_t table_out(const vf_renderer_t *r);
 static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol);
+
+/* The table builders' scratch: with lighting, preint1's also builds the front-weighted table, which needs more. */
+static size_t scratch_bytes(const vf_params_t *p)
+{
+    return VF_LIT_TABLES && p->lighting && p->mode == VF_MODE_PREINT1 ? vfi_table_scratch_lit_bytes(p->table_size)
+                                                                       : vfi_table_scratch_bytes(p->table_size);
+}
+
+static vf_status_t scratch_alloc(const vf_params_t *p, vfi_table_scratch_t *scratch, vf_arena_t *arena)
+{
+    return VF_LIT_TABLES && p->lighting && p->mode == VF_MODE_PREINT1
+               ? vfi_table_scratch_alloc_lit(scratch, p->table_size, arena)
+               : vfi_table_scratch_alloc(scratch, p->table_size, arena);
+}
 static size_t lit_table_bytes(const vf_params_t *p);
 #if VF_LIGHTING
 static bool lighting_alloc(vf_renderer_t *r, vf_arena_t *arena);
@@ -110,7 +124,7 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     const bool lut = p->correction == VF_CORRECTION_LUT;
     s = vfi_classify_alloc(&r->cls, n, p->lookup, arena);
     if (s == VF_OK)
-        s = vfi_table_scratch_alloc(&r->table_scratch, n, arena);
+        s = scratch_alloc(p, &r->table_scratch, arena);
     r->table = vfi_arena_alloc(arena, table_entries(p) * 4 * table_value_bytes(p));
     if (lut) {
         r->lut_f = vfi_arena_alloc(arena, sizeof(uint16_t) * VFI_LUT_KNOTS);
@@ -241,7 +255,7 @@ uint32_t vf_renderer_table_parts(const vf_renderer_t *r)
 
 size_t vf_renderer_table_part_bytes(const vf_renderer_t *r)
 {
-    return r ? VFI_ALIGN + vfi_table_scratch_bytes(r->params.table_size) : 0;
+    return r ? VFI_ALIGN + scratch_bytes(&r->params) : 0;
 }
 
 vf_status_t vf_renderer_build_table_part(vf_renderer_t *r, uint32_t part, void *scratch, size_t bytes)
@@ -265,7 +279,7 @@ vf_status_t vf_renderer_build_table_part(vf_renderer_t *r, uint32_t part, void *
         vf_arena_t arena;
         vfi_table_scratch_t ts;
         vf_arena_init(&arena, scratch, bytes);
-        if (vfi_table_scratch_alloc(&ts, r->params.table_size, &arena) != VF_OK)
+        if (scratch_alloc(&r->params, &ts, &arena) != VF_OK)
             return VF_ERR_NOMEM;
         vfi_preint_table_part(&r->cls, r->tables_slab_q16, &ts, out, part, r->table_parts);
     }
@@ -406,7 +420,7 @@ static size_t table_entries(const vf_params_t *p)
 
 static size_t table_bytes(const vf_params_t *p)
 {
-    size_t bytes = vfi_table_scratch_bytes(p->table_size) + vfi_arena_block(table_entries(p) * 4 * table_value_bytes(p));
+    size_t bytes = scratch_bytes(p) + vfi_arena_block(table_entries(p) * 4 * table_value_bytes(p));
     if (p->correction == VF_CORRECTION_LUT)
         bytes += vfi_arena_block(sizeof(uint16_t) * VFI_LUT_KNOTS) + vfi_arena_block(sizeof(uint32_t) * VFI_LUT_KNOTS);
     if (has_view_table(p))

@@ -47,6 +47,13 @@
 #define VF_TABLE_ORACLE 1
 #endif
 
+/* The front-weighted (lit) tables of interpolated pre-integrated lighting (docs/algorithm.md section 7; tables.h,
+ * vfi_table_out_t.lit_q15 and lit_u8; vf_table_preint_lit), about 4.8 KB of Cortex-M4 code as linked: 0 leaves
+ * them out, the builders then never write lit outputs and vf_table_preint_lit gives VF_ERR_UNSUPPORTED. */
+#ifndef VF_LIT_TABLES
+#define VF_LIT_TABLES VF_LIGHTING /* the builds that light frames */
+#endif
+
 /* Loops specialised for cases that the general ones also render, to the bit, for speed alone: point's loop of the
  * default path for table sizes other than 256 (engine's point frame at 128 entries: 64.7 M instructions, 86.0 M
  * with the general loop; callgrind, make bench's count), and the 2D table builder's block for grey transfer

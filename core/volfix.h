@@ -336,6 +336,12 @@ size_t vf_table_scratch_bytes(uint32_t n);
 vf_status_t vf_table_point(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_arena_t *scratch, uint16_t *out);
 vf_status_t vf_table_preint(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_builder_t builder,
                             vf_arena_t *scratch, uint16_t *out);
+/* The same 2D table into out and, into lit_out (n * n * 4 values, the same indices), its front-weighted values
+ * for interpolated pre-integrated lighting (docs/algorithm.md section 7): D_f r, g, b (premultiplied) and S_f,
+ * Q1.15, D_f at most the entry's C and S_f at most its a. out is the table vf_table_preint builds, to the bit.
+ * vf_table_scratch_bytes covers it. */
+vf_status_t vf_table_preint_lit(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_builder_t builder,
+                                vf_arena_t *scratch, uint16_t *out, uint16_t *lit_out);
 
 #ifdef __cplusplus
 }

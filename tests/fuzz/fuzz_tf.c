@@ -1,6 +1,8 @@
 /* fuzz_tf.c: a transfer-function file (vfp_tf_load, as x.tf), then what the programs do with one: map it through
  * the windows of an 8-bit and a 16-bit volume (vfp_tf_to_core), move it as the level and width knobs do
- * (vfp_tf_move), and hand the points to the core, which must accept them (vf_table_point). */
+ * (vfp_tf_move), and hand the points to the core, which must accept them (vf_table_point), and build the lit
+ * tables from them (vf_table_preint_lit): the 2D table vf_table_preint's to the bit, every front-weighted value
+ * at most its entry's colour or opacity, every value at most 1.0. */
 #include "fuzz.h"
 #include "io/tf.h"
 
@@ -21,6 +23,18 @@ static void to_core(const vfp_tf_t *tf, const vfp_volume_t *vol, vf_window_t win
     vf_arena_init(&arena, scratch, bytes);
     if (!scratch || vf_table_point(&core_tf, TABLE_SIZE, 65536, &arena, table) != VF_OK)
         abort();
+#if VF_LIT_TABLES
+    static uint16_t plain[TABLE_SIZE * TABLE_SIZE * 4], table2d[TABLE_SIZE * TABLE_SIZE * 4],
+        lit[TABLE_SIZE * TABLE_SIZE * 4];
+    const uint32_t slab_q16 = 40000 + (uint32_t)(n * 7919u % 200000u); /* a slab length that varies with the input */
+    if (vf_table_preint(&core_tf, TABLE_SIZE, slab_q16, VF_BUILDER_INCREMENTAL, &arena, plain) != VF_OK ||
+        vf_table_preint_lit(&core_tf, TABLE_SIZE, slab_q16, VF_BUILDER_INCREMENTAL, &arena, table2d, lit) != VF_OK ||
+        memcmp(plain, table2d, sizeof plain) != 0)
+        abort();
+    for (size_t k = 0; k < sizeof lit / sizeof lit[0]; k++)
+        if (lit[k] > table2d[k] || table2d[k] > 32768)
+            abort();
+#endif
     free(scratch);
 }
 
