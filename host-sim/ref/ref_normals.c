@@ -37,29 +37,56 @@ int ref_normal_levels(int normal_bits)
     return (1 << (normal_bits / 2)) - 1;
 }
 
-void ref_gradient(const ref_volume_t *vol, const void *raw, int raw_type, int x, int y, int z, int64_t G[3],
-                  double gd[3])
+/* What a gradient needs of the volume: its strides, and for each axis and step count c (1 or 2) the integer
+ * q_a(c) = round(2^14 sp_min / (c sp_a)) = floor((2^15 sp_min + c sp_a) / (2 c sp_a)) and the double
+ * sp_min / (c sp_a), from the spacings as the core has them, Q16.16 integers (the reference's are q / 65536:
+ * exact). */
+typedef struct grad_ctx {
+    const ref_volume_t *vol;
+    const void *raw;
+    int type;
+    size_t stride[3];
+    int64_t q[3][2];
+    double w[3][2];
+} grad_ctx_t;
+
+static void grad_init(grad_ctx_t *g, const ref_volume_t *vol, const void *raw, int type)
 {
-    const int p[3] = {x, y, z};
-    const size_t stride[3] = {1, (size_t)vol->dims[0], (size_t)vol->dims[0] * (size_t)vol->dims[1]};
-    /* the spacings as the core has them, Q16.16 integers (the reference's are q / 65536: exact) */
+    g->vol = vol, g->raw = raw, g->type = type;
+    g->stride[0] = 1, g->stride[1] = (size_t)vol->dims[0], g->stride[2] = g->stride[1] * (size_t)vol->dims[1];
     int64_t sp[3], sp_min;
     for (int a = 0; a < 3; a++)
         sp[a] = (int64_t)llround(vol->spacing[a] * 65536.0);
     sp_min = sp[0] < sp[1] ? sp[0] : sp[1];
     sp_min = sp[2] < sp_min ? sp[2] : sp_min;
-    const size_t at = (size_t)x * stride[0] + (size_t)y * stride[1] + (size_t)z * stride[2];
+    for (int a = 0; a < 3; a++)
+        for (int64_t c = 1; c <= 2; c++) {
+            g->q[a][c - 1] = ((sp_min << 15) + c * sp[a]) / (2 * c * sp[a]);
+            g->w[a][c - 1] = (double)sp_min / ((double)c * (double)sp[a]);
+        }
+}
+
+static void grad_at(const grad_ctx_t *g, int x, int y, int z, int64_t G[3], double gd[3])
+{
+    const int p[3] = {x, y, z};
+    const size_t at = (size_t)x * g->stride[0] + (size_t)y * g->stride[1] + (size_t)z * g->stride[2];
     for (int a = 0; a < 3; a++) {
-        const int lo = p[a] > 0 ? p[a] - 1 : 0, hi = p[a] + 1 < vol->dims[a] ? p[a] + 1 : p[a];
-        const int64_t c = hi - lo; /* 2 inside, 1 at a face */
-        const int64_t D = raw_at(raw, raw_type, at + (size_t)(hi - p[a]) * stride[a]) -
-                          raw_at(raw, raw_type, at - (size_t)(p[a] - lo) * stride[a]);
-        /* q = round(2^14 sp_min / (c sp_a)) = floor((2^15 sp_min + c sp_a) / (2 c sp_a)) */
-        const int64_t q = ((sp_min << 15) + c * sp[a]) / (2 * c * sp[a]);
-        G[a] = D * q;
+        const int lo = p[a] > 0 ? p[a] - 1 : 0, hi = p[a] + 1 < g->vol->dims[a] ? p[a] + 1 : p[a];
+        const int c = hi - lo; /* 2 inside, 1 at a face */
+        const int64_t D = raw_at(g->raw, g->type, at + (size_t)(hi - p[a]) * g->stride[a]) -
+                          raw_at(g->raw, g->type, at - (size_t)(p[a] - lo) * g->stride[a]);
+        G[a] = D * g->q[a][c - 1];
         if (gd)
-            gd[a] = (double)D * ((double)sp_min / ((double)c * (double)sp[a]));
+            gd[a] = (double)D * g->w[a][c - 1];
     }
+}
+
+void ref_gradient(const ref_volume_t *vol, const void *raw, int raw_type, int x, int y, int z, int64_t G[3],
+                  double gd[3])
+{
+    grad_ctx_t g;
+    grad_init(&g, vol, raw, raw_type);
+    grad_at(&g, x, y, z, G, gd);
 }
 
 int ref_normal_code(const int64_t G[3], int levels)
@@ -119,11 +146,13 @@ int ref_normals(const ref_volume_t *vol, const void *raw, int raw_type, int norm
         return -1;
     uint64_t most = 0;
     size_t n = 0;
+    grad_ctx_t g;
+    grad_init(&g, vol, raw, raw_type);
     for (int z = 0; z < vol->dims[2]; z++)
         for (int y = 0; y < vol->dims[1]; y++)
             for (int x = 0; x < vol->dims[0]; x++, n++) {
                 int64_t G[3];
-                ref_gradient(vol, raw, raw_type, x, y, z, G, NULL);
+                grad_at(&g, x, y, z, G, NULL);
                 const uint64_t len2 = (uint64_t)(G[0] * G[0]) + (uint64_t)(G[1] * G[1]) + (uint64_t)(G[2] * G[2]);
                 m[n] = (uint32_t)isqrt64(len2);
                 most = m[n] > most ? m[n] : most;
@@ -143,11 +172,13 @@ int64_t ref_gradient_most(const ref_volume_t *vol, const void *raw, int raw_type
     if (!vol || !raw || raw_type < REF_VOXEL_U8 || raw_type > REF_VOXEL_I16 || ref_volume_check(vol, &spmin))
         return -1;
     uint64_t most2 = 0; /* floor(sqrt) is monotonic: M is the root of the largest square */
+    grad_ctx_t g;
+    grad_init(&g, vol, raw, raw_type);
     for (int z = 0; z < vol->dims[2]; z++)
         for (int y = 0; y < vol->dims[1]; y++)
             for (int x = 0; x < vol->dims[0]; x++) {
                 int64_t G[3];
-                ref_gradient(vol, raw, raw_type, x, y, z, G, NULL);
+                grad_at(&g, x, y, z, G, NULL);
                 const uint64_t len2 = (uint64_t)(G[0] * G[0]) + (uint64_t)(G[1] * G[1]) + (uint64_t)(G[2] * G[2]);
                 most2 = len2 > most2 ? len2 : most2;
             }
