@@ -128,8 +128,11 @@ static vfp_status_t stages(study_t *st, int scene, char *err, size_t errlen)
     uint8_t *unquantised = truth ? reference_image(st, scene, &def, 1, 0, 0, err, errlen) : NULL;
     uint8_t *exact = unquantised ? reference_image(st, scene, &def, 0, 0, 0, err, errlen) : NULL;
     vfp_status_t status = exact ? VFP_OK : VFP_ERR;
+    /* the quick study: fewer points, the core's own among them (14-bit codes, 14 fraction bits of shade, 8- and
+     * 16-bit tables) */
     static const unsigned normal_bits[] = {8, 10, 12, 14, 16}, shade_bits[] = {4, 6, 8, 10, 12, 14, 16},
                           lit_bits[] = {4, 6, 8, 10, 12, 16};
+    static const unsigned quick_shade[] = {4, 8, 14}, quick_lit[] = {4, 8, 16};
     for (size_t k = 0; status == VFP_OK && k < sizeof normal_bits / sizeof *normal_bits; k++) {
         if (quick && normal_bits[k] == 10)
             continue;
@@ -139,12 +142,13 @@ static vfp_status_t stages(study_t *st, int scene, char *err, size_t errlen)
         snprintf(value, sizeof value, "%u", normal_bits[k]);
         status = core_run(st, scene, &p, "normal_bits", value, unquantised, truth, err, errlen);
     }
-    for (size_t k = 0; status == VFP_OK && k < sizeof shade_bits / sizeof *shade_bits; k++)
-        if (!quick || shade_bits[k] % 4 == 0)
-            status = knob_run(st, scene, "shade_bits", shade_bits[k], exact, err, errlen);
-    for (size_t k = 0; status == VFP_OK && k < sizeof lit_bits / sizeof *lit_bits; k++)
-        if (!quick || lit_bits[k] % 4 == 0)
-            status = knob_run(st, scene, "lit_table_bits", lit_bits[k], exact, err, errlen);
+    const unsigned *shades = quick ? quick_shade : shade_bits, *lits = quick ? quick_lit : lit_bits;
+    const size_t n_shades = quick ? 3 : sizeof shade_bits / sizeof *shade_bits;
+    const size_t n_lits = quick ? 3 : sizeof lit_bits / sizeof *lit_bits;
+    for (size_t k = 0; status == VFP_OK && k < n_shades; k++)
+        status = knob_run(st, scene, "shade_bits", shades[k], exact, err, errlen);
+    for (size_t k = 0; status == VFP_OK && k < n_lits; k++)
+        status = knob_run(st, scene, "lit_table_bits", lits[k], exact, err, errlen);
     /* the shade lookup against the truth (the core's reference for each is the exact-codes one of its mode) */
     for (int m = 0; status == VFP_OK && !quick && m < 2; m++)
         for (int lookup = 0; status == VFP_OK && lookup < VF_LOOKUP_COUNT; lookup++) {

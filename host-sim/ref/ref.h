@@ -5,8 +5,9 @@
  * image and the core's is the core's fixed-point error alone. It skips nothing (no run-length encoding, no skip
  * links), builds the pre-integrated table by brute force, and keeps every intermediate value in double. The
  * only quantisations are the ones the spec imposes on both implementations: the 8-bit window, the table's
- * nearest-entry lookup, the 2^-16 grid of the slice offsets and, when asked for, 8-bit tables (section 4b) and
- * partial slabs' side-face crossings and face scalars (section 4c).
+ * nearest-entry lookup, the 2^-16 grid of the slice offsets and, when asked for, 8-bit tables (section 4b),
+ * partial slabs' side-face crossings and face scalars (section 4c) and lighting's normal codes and 8-bit gradient
+ * magnitudes (section 7, computed here from its integer definition).
  * Callers hand the reference the quantised inputs the core sees (spacing q / 65536, zoom q / 65536, TF scalar
  * q / 256, colours q / 65535).
  *

@@ -334,8 +334,11 @@ static void front_weighted_against_core(void)
         CHECK_EQ(vf_table_preint_lit(&tf, n, slab_q16, VF_BUILDER_INCREMENTAL, &arena, plain, lit), VF_OK);
         CHECK_EQ(ref_lit_table(rtf, 6, (int)n, slab_q16 / 65536.0, ref), 0);
         for (size_t e = 0; e < (size_t)n * n; e++)
-            for (int c = 0; c < 4; c++) /* the core's r, g, b, S_f; the reference's S_f, r, g, b */
-                worst = fmax(worst, fabs(lit[4 * e + c] / 32768.0 - ref[4 * e + (c + 1) % 4]) * 32768);
+            for (int c = 0; c < 4; c++) { /* the core's r, g, b, S_f; the reference's S_f, r, g, b */
+                const double lsb = fabs(lit[4 * e + c] / 32768.0 - ref[4 * e + (c + 1) % 4]) * 32768;
+                if (lsb > worst) /* not fmax: aarch64 gcc 12 fails (an internal error) vectorising that reduction */
+                    worst = lsb;
+            }
     }
     free(scratch);
     free(plain);
