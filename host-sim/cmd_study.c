@@ -15,7 +15,7 @@
 #include "study.h"
 
 static const char usage[] =
-    "usage: volfix-sim study [--quick] -o DIR [--threads N]\n"
+    "usage: volfix-sim study [--quick] [--lighting-only] -o DIR [--threads N]\n"
     "The fixed-point precision study. Renders scenes with the core in many configurations and measures each\n"
     "against the double reference of the same algorithm (the fixed-point error alone) and against the ground\n"
     "truth ray caster (the algorithm's own error), with the memory it needs. One factor at a time around the\n"
@@ -23,10 +23,12 @@ static const char usage[] =
     "warp): bits of the tables, samples, intermediate image and warp; table size with lookup; correction;\n"
     "mode with smooth and sharp transfer functions; rays per voxel column (1 to 16) with whole and partial\n"
     "slabs at 256 and 1024 entries (the full study counts their instructions per frame with valgrind's\n"
-    "callgrind when it is installed). Writes to DIR: results.csv, summary.json, plots (PNG,\n"
+    "callgrind when it is installed); lit, the bits of the normal codes (against unquantised normals), of the\n"
+    "shade table and of the front-weighted table. Writes to DIR: results.csv, summary.json, plots (PNG,\n"
     "with gnuplot), image strips and report.md with a recommended configuration for a Raspberry Pi class\n"
     "board and for a microcontroller with 256 KB of RAM.\n\n"
     "  --quick              the subset that runs in make test (under two minutes)\n"
+    "  --lighting-only      the lighting stages alone (with --quick, their quick subset)\n"
     "  -o DIR               where to write (created)\n"
     "  --threads N          threads for the ground truth (default 2)\n"
     "The sample volumes (neghip, engine, bucky, ...) come from the folder $VOLFIX_DATA, when it is set.\n";
@@ -216,6 +218,8 @@ int sim_cmd_study(int argc, char **argv)
             return VFP_EXIT_OK;
         } else if (strcmp(argv[i], "--quick") == 0) {
             st->quick = 1;
+        } else if (strcmp(argv[i], "--lighting-only") == 0) {
+            st->lighting_only = 1;
         } else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
             st->dir = argv[++i];
         } else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
@@ -254,6 +258,8 @@ int sim_cmd_study(int argc, char **argv)
     char path[1024];
     sweep_ctx_t c = {.st = st};
     const uint32_t small = 256;
+    if (st->lighting_only)
+        goto lighting;
 
     /* Marschner-Lobb 41^3, the test signal made to show reconstruction error: sharp and smooth. The sharp scene
      * is rendered at 512x512, the size of the claim that pre-integration is at least 6 dB closer to the truth. */
@@ -398,6 +404,10 @@ int sim_cmd_study(int argc, char **argv)
             run(&c, s, &p, "fixed_point", label);
         }
     }
+
+lighting: /* the lighting stages (study_lit.c) */
+    if (!c.failed && study_lit(st, data, c.err, sizeof c.err))
+        c.failed = 1;
 
     if (st->progress_tty)
         fprintf(stderr, "\n");

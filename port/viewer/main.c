@@ -45,6 +45,9 @@ static const char usage[] =
     "  --frames N           leave after N frames (long runs and tests)\n"
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]   for raw voxel files\n"
     "  --version            print the version and leave\n"
+    "Lighting (docs/algorithm.md section 7), for every transfer function the preset button cycles to; each\n"
+    "otherwise lit as it says itself:\n"
+    VFP_LIGHTING_HELP
     "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N. Ctrl-C quits.\n";
 
 static vfp_status_t bad(const char *option, const char *value, const char *expected)
@@ -71,6 +74,7 @@ typedef struct options {
     uint32_t width, height;
     int preview, idle_ms, threads, overlay, frames;
     vfp_load_opts_t load;
+    vfp_lighting_opts_t lighting;
 } options_t;
 
 static vfp_status_t parse(options_t *o, int argc, char **argv)
@@ -81,10 +85,11 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
     o->view[1] = 20;
     o->zoom = 1;
     o->preview = o->idle_ms = o->threads = -1;
+    vfp_lighting_opts_init(&o->lighting);
     char err[VIEWER_ERR_LEN];
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = 1;
+        int takes = 1, took;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             fputs(usage, stdout);
             return VFP_HELP_SHOWN;
@@ -163,6 +168,9 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
             if (!v || sscanf(v, "%lf,%lf,%lf", &s[0], &s[1], &s[2]) != 3 || !(s[0] > 0 && s[1] > 0 && s[2] > 0))
                 return bad(a, v, "X,Y,Z, three positive numbers");
             o->load.have_spacing = 1;
+        } else if ((took = vfp_lighting_option(&o->lighting, "volfix", a, v)) != 0) {
+            if (took < 0)
+                return VFP_ERR;
         } else if (a[0] != '-' && !o->volume) {
             o->volume = a;
             takes = 0;
@@ -194,6 +202,10 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
     }
     if (o->preset && o->tf) {
         fprintf(stderr, "volfix: give --preset or --tf, not both\n");
+        return VFP_ERR;
+    }
+    if (vfp_lighting_check(&o->lighting, err, sizeof err)) {
+        fprintf(stderr, "volfix: %s\n", err);
         return VFP_ERR;
     }
     return VFP_OK;
@@ -255,6 +267,13 @@ static vfp_status_t setup(viewer_t *v, const options_t *o, char *err, size_t err
     if (load_tfs(s, o, &first, err, errlen))
         return VFP_ERR;
     vf_params_default(&s->params);
+    for (int k = 0; k < s->tf_count; k++) { /* each transfer function's lighting; renderers are made to suit */
+        vf_params_t p = s->params;
+        vfp_lighting_resolve(&o->lighting, &s->tfs[k], &p, &s->lighting[k]);
+        s->lit[k] = p.lighting;
+        s->params.normal_bits = p.normal_bits;
+        s->params.shade_lookup = p.shade_lookup;
+    }
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     s->threads = o->threads > 0 ? o->threads : b->threads > 0 ? b->threads : cpus < 1 ? 1 : cpus > 16 ? 16 : (int)cpus;
     const uint32_t *d = s->full.core.dims;

@@ -39,8 +39,9 @@ int main(void)
                     snprintf(name, sizeof name, "accuracy/%s/%s/%s/%g,%g", volumes[v].file, presets[p],
                              m ? "preint1" : "point", views[w][0], views[w][1]);
                     sim_opts_t o;
-                    char *argv[] = {path, "--preset", (char *)presets[p], "--threads", "2"};
-                    sim_parse(&o, 5, argv, SIM_OPT_SCENE, "");
+                    /* unlit, as the CT presets are not by default: test_lighting.c has the lit frames */
+                    char *argv[] = {path, "--preset", (char *)presets[p], "--threads", "2", "--shade", "none"};
+                    sim_parse(&o, 7, argv, SIM_OPT_SCENE, "");
                     o.params.mode = m ? VF_MODE_PREINT1 : VF_MODE_POINT;
                     o.azimuth = views[w][0];
                     o.elevation = views[w][1];

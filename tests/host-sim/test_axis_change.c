@@ -21,9 +21,10 @@ typedef struct shape {
 static int measure(const char *volume, const char *preset, int mode, double az, double el, shape_t *sh)
 {
     char err[VFP_ERR_LEN];
-    char *argv[] = {(char *)volume, "--preset", (char *)preset, "--size", "256x256", "--threads", "2"};
+    /* unlit: the shape of what a view shows, not its shading (the CT presets are lit by default) */
+    char *argv[] = {(char *)volume, "--preset", (char *)preset, "--size", "256x256", "--threads", "2", "--shade", "none"};
     sim_opts_t o;
-    sim_parse(&o, 7, argv, SIM_OPT_SCENE, "");
+    sim_parse(&o, 9, argv, SIM_OPT_SCENE, "");
     o.params.mode = mode ? VF_MODE_PREINT1 : VF_MODE_POINT;
     o.azimuth = az;
     o.elevation = el;
