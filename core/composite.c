@@ -103,7 +103,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     const bool plain = !r->general_loops && vfi_plain_path(job.bilinear, job.lookup.q15, job.lookup.lut_f, job.sample_shift, job.inter_shift,
                                       rays);
     job.plain = plain && !(VF_LIGHTING && job.shading);
-    job.plain_lit = plain && VF_LIGHTING && job.shading && !job.shading->ramp;
+    job.plain_lit = plain && VF_LIGHTING && job.shading && job.shading->shade && !job.shading->ramp;
     job.grey = r->tf_grey;
     const vfi_runs_t *runs = &r->runs[f->k_axis];
     const bool partial = VF_PARTIAL_SLABS && r->params.partial_slabs; /* constant 0 in builds without them */
