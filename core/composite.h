@@ -262,7 +262,7 @@ static inline vfi_shade_t vfi_voxel_shade(const vfi_shading_t *sh, const uint8_t
     const size_t at = (size_t)(p - sh->slices);
     vfi_shade_t out = {VFI_SHADE_ONE, 0, 32768u};
     if (sh->shade) {
-        const uint32_t e = sh->shade[sh->codes[at]];
+        const uint64_t e = sh->shade[sh->codes[at]];
         out.d = vfi_shade_diffuse(e), out.s = vfi_shade_specular(e);
     }
     if (sh->ramp)

@@ -21,6 +21,17 @@ static bool on_demand(const vf_renderer_t *r);
 #endif
 static bool tables_complete(const vf_renderer_t *r);
 static inline vfi_table_out_t table_out(const vf_renderer_t *r);
+
+/* Whether lit frames take the general loops though the path is plain: gradient opacity (composite.c). */
+static inline bool lit_general(const vf_renderer_t *r)
+{
+#if VF_LIGHTING
+    return r->lit && r->lighting.gradient_hi;
+#else
+    (void)r;
+    return false;
+#endif
+}
 static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol);
 
 /* The table builders' scratch: with lighting, preint1's also builds the front-weighted table, which needs more. */
@@ -60,7 +71,7 @@ void vf_params_default(vf_params_t *p)
     p->background[0] = p->background[1] = p->background[2] = 0;
     p->lighting = false;
     p->normal_bits = 14;
-    p->shade_lookup = VF_LOOKUP_BILINEAR;
+    p->shade_lookup = VF_LOOKUP_NEAREST; /* docs/usage.md: what bilinear costs and what it buys */
 }
 
 void vf_lighting_default(vf_lighting_t *l)
@@ -471,7 +482,7 @@ static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol)
     for (int a = 0; a < 3; a++)
         bytes += vfi_arena_block(sizeof(uint16_t) * vfi_slices_bytes(vol->dims, a)) +
                  vfi_arena_block(vfi_slices_bytes(vol->dims, a));
-    return bytes + vfi_arena_block(sizeof(int32_t) * 3 * codes) + vfi_arena_block(sizeof(uint32_t) * codes) +
+    return bytes + vfi_arena_block(sizeof(int32_t) * 3 * codes) + vfi_arena_block(sizeof(uint64_t) * codes) +
            vfi_arena_block(sizeof(uint16_t) * 256);
 }
 
@@ -489,7 +500,7 @@ static bool lighting_alloc(vf_renderer_t *r, vf_arena_t *arena)
             return false;
     }
     r->unit = vfi_arena_alloc(arena, sizeof(int32_t) * 3 * r->code_count);
-    r->shade = vfi_arena_alloc(arena, sizeof(uint32_t) * r->code_count);
+    r->shade = vfi_arena_alloc(arena, sizeof(uint64_t) * r->code_count);
     r->ramp = vfi_arena_alloc(arena, sizeof(uint16_t) * 256);
     if (p->mode == VF_MODE_PREINT1)
         r->lit_table = vfi_arena_alloc(arena, table_entries(p) * 4 * table_value_bytes(p));
@@ -663,15 +674,16 @@ static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
     }
 }
 
-/* Whether a frame on one thread builds its 2D table as compositing reads it: when the one loop that reads the
- * table is composite_order1.c's span_plain (the plain path, after update_tables has set the lookup), and without
- * the lut, whose view table is made from every entry, or partial slabs, whose faces read the table elsewhere. */
+/* Whether a frame on one thread builds its 2D table as compositing reads it: when the loops that read the table
+ * are composite_order1.c's span_plain or span_plain_lit (the plain path, after update_tables has set the lookup),
+ * and without the lut, whose view table is made from every entry, or partial slabs, whose faces read the table
+ * elsewhere. A lit frame's diagonals bring their front-weighted values with them. */
 #if VF_TABLE_ON_DEMAND
 static bool on_demand(const vf_renderer_t *r)
 {
     const vf_params_t *p = &r->params;
-    return p->mode == VF_MODE_PREINT1 && p->correction == VF_CORRECTION_REBUILD && !p->partial_slabs && !vfi_lit(r) &&
-           !r->general_loops &&
+    return p->mode == VF_MODE_PREINT1 && p->correction == VF_CORRECTION_REBUILD && !p->partial_slabs &&
+           !r->general_loops && !lit_general(r) &&
            vfi_plain_path(p->lookup == VF_LOOKUP_BILINEAR, r->lookup.q15, r->lookup.lut_f, p->sample_bits,
                           16 - p->intermediate_bits, p->rays);
 }

@@ -71,7 +71,7 @@ struct vf_renderer {
     uint8_t *magnitudes[3];
     int32_t *unit;           /* [codes][3] unit normals, Q1.30 */
     uint32_t code_count;
-    uint32_t *shade;         /* [code_count] */
+    uint64_t *shade;         /* [code_count] L_d and L_s in lanes (shade.h) */
     uint16_t *ramp;          /* [256] gradient-opacity factors */
     void *lit_table;
     uint16_t *lit_view_table;

@@ -151,8 +151,8 @@ typedef struct vf_params {
     bool lighting;
     uint32_t normal_bits;       /* bits of a normal code, 8, 10, 12, 14 (14) or 16: 2^(B/2) - 1 levels a side of
                                  * the octahedron (section 7) */
-    vf_lookup_t shade_lookup;   /* a sample's shade: its nearest voxel's, or its four voxels' interpolated
-                                 * (bilinear, the default) */
+    vf_lookup_t shade_lookup;   /* a sample's shade: its nearest voxel's (nearest, the default), or its four
+                                 * voxels' interpolated (bilinear: a little closer to the truth, at more cost) */
     /* Precision of the core's own arithmetic, for studies of how many bits each stage needs (docs/algorithm.md,
      * section 6). The defaults are the full precision; the double reference ignores these. */
     uint32_t sample_bits;       /* 0: samples exact; 4..16: rounded to that many fraction bits before lookup */
