@@ -364,6 +364,17 @@ int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, c
                const ref_view_t *view, int out_w, int out_h, double *rgb, ref_factor_t *factor_out)
 {
     ref_factor_t f;
+    if (p && p->mode == REF_MODE_PREINT2) { /* section 8: ref_order2.c */
+        if (!vol || !vol->scalars || !rgb || ref_factor(vol, view, out_w, out_h, &f))
+            return -1;
+        if (p->slice_offsets_q16 && ref_factor_adopt_offsets(&f, p->slice_offsets_q16, p->slice_k_axis,
+                                                             p->slice_k_flip))
+            return -2;
+        int rc = ref_render_order2(vol, tf, npoints, p, &f, rgb);
+        if (rc == 0 && factor_out)
+            *factor_out = f;
+        return rc;
+    }
     int rays = p && p->rays == 0 ? 1 : p ? p->rays : 0, W, H;
     if (!vol || !vol->scalars || !p || !rgb || p->table_size < REF_MIN_TABLE || p->table_size > REF_MAX_TABLE ||
         !mode_valid(p->mode) || !lookup_valid(p->lookup) ||
@@ -401,4 +412,21 @@ int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, c
     if (rc == 0 && factor_out)
         *factor_out = f;
     return rc;
+}
+
+/* ---- For ref_order2.c (ref.h): the helpers above by name. ---- */
+
+uint8_t *ref_standard_slices(const ref_volume_t *vol, const ref_factor_t *f)
+{
+    return standard_slices(vol, f);
+}
+
+double ref_slice_sample(const uint8_t *slice, int ni, double x, double y)
+{
+    return sample(slice, ni, x, y);
+}
+
+void ref_composite_segment(double *pix, const double *seg)
+{
+    composite(pix, seg);
 }
