@@ -180,7 +180,7 @@ static inline void store_entry(vfi_table_out_t out, size_t e, const uint32_t c[3
 static VF_ALWAYS_INLINE void table_part(const vfi_order2_pieces_t *pieces, uint32_t n2, vfi_table_out_t out,
                                         uint32_t part, uint32_t parts, bool with_lit)
 {
-    const uint32_t n = pieces->cls.n;
+    const uint32_t n = pieces->n;
     const ends_rule_t rule = ends_rule(n, n2);
     const size_t plane = (size_t)n2 * n2;
     for (uint32_t f = part; f < n2; f += parts)
@@ -221,27 +221,33 @@ size_t vfi_order2_pieces_bytes(uint32_t n, bool lit)
 vf_status_t vfi_order2_pieces_alloc(vfi_order2_pieces_t *pieces, uint32_t n, bool lit, vf_arena_t *arena)
 {
     vfi_zero(pieces, sizeof *pieces);
-    pieces->cls.tau_q28 = vfi_arena_alloc(arena, sizeof(uint32_t) * n);
+    pieces->n = n;
+    pieces->tau = vfi_arena_alloc(arena, sizeof(uint32_t) * n);
     pieces->table = vfi_arena_alloc(arena, sizeof(uint32_t) * 4 * (size_t)n * n);
     if (lit)
         pieces->lit = vfi_arena_alloc(arena, sizeof(uint32_t) * 4 * (size_t)n * n);
-    return pieces->cls.tau_q28 && pieces->table && (!lit || pieces->lit) ? VF_OK : VF_ERR_NOMEM;
+    return pieces->tau && pieces->table && (!lit || pieces->lit) ? VF_OK : VF_ERR_NOMEM;
 }
 
 void vfi_order2_pieces_build(vfi_order2_pieces_t *pieces, const vfi_classify_t *cls, uint32_t slab_q16,
                              const vfi_table_scratch_t *scratch, bool lit)
 {
-    uint32_t *tau = pieces->cls.tau_q28;
     const uint32_t n = cls->n;
-    pieces->cls = *cls; /* colours, weights: a piece's are the classification's */
-    pieces->cls.tau_q28 = tau;
+    /* The classification the builder reads (its n, extinctions, colours and weights), with the pieces' extinctions:
+     * set field by field, as a copy of the whole, scalar arrays and all, would be a memcpy call, which the
+     * freestanding core does not have. */
+    vfi_classify_t piece_cls;
+    piece_cls.n = n;
+    piece_cls.tau_q28 = pieces->tau;
+    piece_cls.colour_q30 = cls->colour_q30;
+    piece_cls.weight_q30 = cls->weight_q30;
     for (uint32_t i = 0; i < n; i++) /* tau / (K / 2), rounded: the table for d is then the table for 2d / K */
-        tau[i] = (cls->tau_q28[i] + K / 4) / (K / 2);
+        pieces->tau[i] = (cls->tau_q28[i] + K / 4) / (K / 2);
     vfi_table_out_t out;
     vfi_zero(&out, sizeof out);
     out.q30 = pieces->table;
     out.lit_q30 = VF_LIT_TABLES && lit ? pieces->lit : NULL;
-    vfi_preint_table_incremental(&pieces->cls, slab_q16, scratch, out);
+    vfi_preint_table_incremental(&piece_cls, slab_q16, scratch, out);
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */

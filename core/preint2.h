@@ -16,14 +16,15 @@
 #define VFI_ORDER2_PIECES 16u /* K: pieces a slab's curve is cut into (docs/algorithm.md, section 8) */
 
 /* The pieces of one order-2 table: the 2D table for length 2d / K in Q.30 (r, g, b, a a entry, [front * n + back]),
- * and with lighting its front-weighted values (D_f r, g, b and S_f, docs/algorithm.md section 7). cls is the
- * renderer's classification with every extinction divided by K / 2, so that a table built for d is the table for
- * 2d / K (the division rounds at 2^-28, where rounding 2d / K itself to the Q16.16 of the builders' lengths would
- * cost up to 3 bits of the slab length). */
+ * and with lighting its front-weighted values (D_f r, g, b and S_f, docs/algorithm.md section 7). They are built
+ * from the classification with every extinction divided by K / 2 (tau), so that a table built for d is the table
+ * for 2d / K: the division rounds at 2^-28, where rounding 2d / K itself to the Q16.16 of the builders' lengths
+ * would cost up to 3 bits of the slab length. */
 typedef struct vfi_order2_pieces {
-    vfi_classify_t cls;
+    uint32_t *tau;   /* [n], Q4.28 */
     uint32_t *table; /* [n * n * 4], Q.30 */
     uint32_t *lit;   /* [n * n * 4], Q.30, or NULL: no lighting */
+    uint32_t n;
 } vfi_order2_pieces_t;
 
 /* Arena bytes for the pieces of an n-entry table (lit: with the front-weighted values). */
