@@ -84,80 +84,88 @@ static inline uint32_t min_u32(uint32_t a, uint32_t b)
     return a < b ? a : b;
 }
 
-/* T (Q.30) times an eighths combination (Q.30 times at most 8, below 2^34), divided by 8: Q.30. */
-static inline uint32_t eighths(uint32_t t, uint64_t sum)
-{
-    return (uint32_t)(((uint64_t)t * sum + (UINT64_C(1) << 32)) >> 33);
-}
-
-/* x D + y (C - D) for eighths x, y (C - D kept at least 0: the builders keep D <= C but a rounding). */
+/* x D + y (C - D) for eighths x, y (C - D kept at least 0: the builders keep D <= C but a rounding). Below 2^34. */
 static inline uint64_t mix(uint32_t x, uint32_t y, uint32_t d, uint32_t c)
 {
     return (uint64_t)x * d + (uint64_t)y * (c > d ? c - d : 0);
 }
 
-/* One entry and its mirror, unlit: C and C' (r, g, b), 1 - T. */
+/* An entry and its mirror (the same curve from the back) as composited: colours C (the entry's, Q.60 sums of
+ * T_i C_i, unrounded) and C' (the mirror's, Q.30), the transmittance T (Q.30); lit, the weighted sums W_f, W_b
+ * (r, g, b, specular) of each, the entry's in eighths of Q.60 (sums of T_i times mix), the mirror's in Q.30. */
 typedef struct pair2 {
-    uint32_t c[3], rc[3], t;
-    uint32_t wf[4], wb[4], rwf[4], rwb[4]; /* lit: W_f, W_b (r, g, b, specular) of the entry and of its mirror */
+    uint64_t c[3];
+    uint32_t rc[3], t;
+    uint64_t wf[4], wb[4];
+    uint32_t rwf[4], rwb[4];
 } pair2_t;
 
-static VF_ALWAYS_INLINE void composite_pieces(const uint32_t *table, const uint32_t *lit, uint32_t n,
-                                              const uint32_t end[K + 1], bool mirror, bool with_lit, pair2_t *x)
+/* The pieces of entry end[] front to back, and of its mirror each in front of what it has (preint2.c's header):
+ * the entry's colour as exact Q.60 sums, one product a channel and piece; the mirror's needs the product of the
+ * piece's transmittance with its sum so far, rounded to Q.30 each step. */
+static VF_ALWAYS_INLINE void composite_pieces(const uint32_t *table, uint32_t n, const uint32_t end[K + 1],
+                                              bool mirror, pair2_t *x)
 {
-    uint32_t t_acc = ONE_Q30;
-    for (int c = 0; c < 3; c++)
-        x->c[c] = x->rc[c] = 0;
-    if (with_lit)
-        for (int c = 0; c < 4; c++)
-            x->wf[c] = x->wb[c] = x->rwf[c] = x->rwb[c] = 0;
+    uint32_t t_acc = ONE_Q30, r0 = 0, r1 = 0, r2 = 0;
+    uint64_t c0 = 0, c1 = 0, c2 = 0;
     for (uint32_t i = 0; i < K; i++) {
-        const size_t at = ((size_t)end[i] * n + end[i + 1]) * 4, back = ((size_t)end[i + 1] * n + end[i]) * 4;
-        const uint32_t *p = table + at;
+        const uint32_t *p = table + ((size_t)end[i] * n + end[i + 1]) * 4;
         const uint32_t a = min_u32(p[3], ONE_Q30), t = ONE_Q30 - a;
-        if (with_lit) {
-            const uint32_t *d = lit + at;
-            if (i < K / 2) { /* phi_f(t_i) = (8 - i) / 8, phi_f(t_{i+1}) = (7 - i) / 8 */
-                for (int c = 0; c < 3; c++)
-                    x->wf[c] += eighths(t_acc, mix(8 - i, 7 - i, d[c], p[c]));
-                x->wf[3] += eighths(t_acc, mix(8 - i, 7 - i, d[3], a));
-            } else { /* phi_b(t_i) = (i - 8) / 8, phi_b(t_{i+1}) = (i - 7) / 8 */
-                for (int c = 0; c < 3; c++)
-                    x->wb[c] += eighths(t_acc, mix(i - 8, i - 7, d[c], p[c]));
-                x->wb[3] += eighths(t_acc, mix(i - 8, i - 7, d[3], a));
-            }
-            if (mirror) { /* the mirror's piece K - 1 - i: D' of the transposed entry, the weights traded */
-                const uint32_t *q = table + back, *e = lit + back;
-                for (int c = 0; c < 4; c++) {
-                    x->rwf[c] = mul_q30(t, x->rwf[c]);
-                    x->rwb[c] = mul_q30(t, x->rwb[c]);
-                }
-                if (i >= K / 2) { /* its phi_f at its front (t_{i+1} here): (i - 7) / 8, at its back (i - 8) / 8 */
-                    for (int c = 0; c < 3; c++)
-                        x->rwf[c] += eighths(ONE_Q30, mix(i - 7, i - 8, e[c], q[c]));
-                    x->rwf[3] += eighths(ONE_Q30, mix(i - 7, i - 8, e[3], a));
-                } else { /* its phi_b: (7 - i) / 8 and (8 - i) / 8 */
-                    for (int c = 0; c < 3; c++)
-                        x->rwb[c] += eighths(ONE_Q30, mix(7 - i, 8 - i, e[c], q[c]));
-                    x->rwb[3] += eighths(ONE_Q30, mix(7 - i, 8 - i, e[3], a));
-                }
-            }
-        }
-        for (int c = 0; c < 3; c++)
-            x->c[c] += mul_q30(t_acc, p[c]);
+        c0 += (uint64_t)t_acc * p[0];
+        c1 += (uint64_t)t_acc * p[1];
+        c2 += (uint64_t)t_acc * p[2];
         if (mirror) {
-            const uint32_t *q = table + back;
-            for (int c = 0; c < 3; c++)
-                x->rc[c] = q[c] + mul_q30(t, x->rc[c]);
+            const uint32_t *q = table + ((size_t)end[i + 1] * n + end[i]) * 4;
+            r0 = q[0] + mul_q30(t, r0);
+            r1 = q[1] + mul_q30(t, r1);
+            r2 = q[2] + mul_q30(t, r2);
         }
         t_acc = mul_q30(t_acc, t);
     }
+    x->c[0] = c0, x->c[1] = c1, x->c[2] = c2;
+    x->rc[0] = r0, x->rc[1] = r1, x->rc[2] = r2;
     x->t = t_acc;
 }
 
-/* Entry e of the table (and its lit values): colours at most 1.0 (the pieces' roundings can take a sum a few Q.30 LSB
- * past it, which the formats' conversions do not allow for), W_f <= C, W_b <= C - W_f, likewise the specular with
- * A. */
+/* The lit sums of the same pieces (section 8's W_f, W_b): the entry's piece i adds T_i mix / 8 to W_f (i < K / 2:
+ * phi_f(t_i) = (8 - i) / 8, phi_f(t_{i+1}) = (7 - i) / 8) or W_b (phi_b: (i - 8) / 8, (i - 7) / 8); the mirror's,
+ * the transposed entry's D' (front-weighted towards end[i + 1]) with phi_f and phi_b traded. */
+static VF_ALWAYS_INLINE void lit_pieces(const uint32_t *table, const uint32_t *lit, uint32_t n,
+                                        const uint32_t end[K + 1], bool mirror, pair2_t *x)
+{
+    uint32_t t_acc = ONE_Q30;
+    for (int c = 0; c < 4; c++)
+        x->wf[c] = x->wb[c] = 0, x->rwf[c] = x->rwb[c] = 0;
+    for (uint32_t i = 0; i < K; i++) {
+        const size_t at = ((size_t)end[i] * n + end[i + 1]) * 4;
+        const uint32_t *p = table + at, *d = lit + at;
+        const uint32_t a = min_u32(p[3], ONE_Q30), t = ONE_Q30 - a;
+        const bool front_half = i < K / 2;
+        const uint32_t x0 = front_half ? 8 - i : i - 8, y0 = front_half ? 7 - i : i - 7;
+        uint64_t *w = front_half ? x->wf : x->wb;
+        for (int c = 0; c < 3; c++)
+            w[c] += t_acc * mix(x0, y0, d[c], p[c]);
+        w[3] += t_acc * mix(x0, y0, d[3], a);
+        if (mirror) {
+            const size_t back = ((size_t)end[i + 1] * n + end[i]) * 4;
+            const uint32_t *q = table + back, *e = lit + back;
+            /* its phi_f at its front (t_{i+1} here) and back: (i - 7) / 8, (i - 8) / 8; its phi_b: (7 - i) / 8,
+             * (8 - i) / 8 */
+            const uint32_t x1 = front_half ? 7 - i : i - 7, y1 = front_half ? 8 - i : i - 8;
+            uint32_t *rw = front_half ? x->rwb : x->rwf, *other = front_half ? x->rwf : x->rwb;
+            for (int c = 0; c < 4; c++) {
+                const uint64_t v = mix(x1, y1, e[c], c < 3 ? q[c] : a);
+                rw[c] = (uint32_t)((v + 4) >> 3) + mul_q30(t, rw[c]);
+                other[c] = mul_q30(t, other[c]);
+            }
+        }
+        t_acc = mul_q30(t_acc, t);
+    }
+}
+
+/* Entry e of the table (and its lit values) from Q.30 values: colours at most 1.0 (the pieces' roundings can take a
+ * sum a few Q.30 LSB past it, which the formats' conversions do not allow for), W_f <= C, W_b <= C - W_f, likewise
+ * the specular with A. */
 static inline void store_entry(vfi_table_out_t out, size_t e, const uint32_t c[3], uint32_t alpha,
                                const uint32_t *wf, const uint32_t *wb, bool with_lit)
 {
@@ -177,6 +185,13 @@ static inline void store_entry(vfi_table_out_t out, size_t e, const uint32_t c[3
     vfi_store_values_q30(out.lit_q15, out.lit_u8, out.grid_bits, 2 * e + 1, b[0], b[1], b[2], b[3]);
 }
 
+/* A Q.60 sum in Q.30, rounded; at most 1.0 in Q.30 plus what 2^34 more would round to (below 2^32). */
+static inline uint32_t q30_of_q60(uint64_t v)
+{
+    const uint64_t r = (v + HALF_Q30) >> 30;
+    return r > UINT32_MAX ? UINT32_MAX : (uint32_t)r;
+}
+
 static VF_ALWAYS_INLINE void table_part(const vfi_order2_pieces_t *pieces, uint32_t n2, vfi_table_out_t out,
                                         uint32_t part, uint32_t parts, bool with_lit)
 {
@@ -186,13 +201,20 @@ static VF_ALWAYS_INLINE void table_part(const vfi_order2_pieces_t *pieces, uint3
     for (uint32_t f = part; f < n2; f += parts)
         for (uint32_t m = 0; m < n2; m++)
             for (uint32_t b = f; b < n2; b++) {
-                uint32_t end[K + 1];
+                uint32_t end[K + 1], c[3], wf[4] = {0, 0, 0, 0}, wb[4] = {0, 0, 0, 0};
                 pair2_t x;
                 piece_ends(&rule, f, m, b, end);
                 const bool mirror = b != f;
-                composite_pieces(pieces->table, pieces->lit, n, end, mirror, with_lit, &x);
+                composite_pieces(pieces->table, n, end, mirror, &x);
+                if (with_lit)
+                    lit_pieces(pieces->table, pieces->lit, n, end, mirror, &x);
                 const uint32_t alpha = ONE_Q30 - x.t;
-                store_entry(out, f * plane + (size_t)m * n2 + b, x.c, alpha, x.wf, x.wb, with_lit);
+                for (int k = 0; k < 3; k++)
+                    c[k] = q30_of_q60(x.c[k]);
+                if (with_lit)
+                    for (int k = 0; k < 4; k++) /* eighths of Q.60 */
+                        wf[k] = q30_of_q60((x.wf[k] + 4) >> 3), wb[k] = q30_of_q60((x.wb[k] + 4) >> 3);
+                store_entry(out, f * plane + (size_t)m * n2 + b, c, alpha, wf, wb, with_lit);
                 if (mirror)
                     store_entry(out, b * plane + (size_t)m * n2 + f, x.rc, alpha, x.rwf, x.rwb, with_lit);
             }
