@@ -133,7 +133,7 @@ static VF_ALWAYS_INLINE void composite_pieces(const uint32_t *table, uint32_t n,
 static VF_ALWAYS_INLINE void lit_pieces(const uint32_t *table, const uint32_t *lit, uint32_t n,
                                         const uint32_t end[K + 1], bool mirror, pair2_t *x)
 {
-    uint32_t t_acc = ONE_Q30;
+    uint32_t t_acc = ONE_Q30, t_back = ONE_Q30; /* t_back: the back half's transmittance, for the mirror */
     for (int c = 0; c < 4; c++)
         x->wf[c] = x->wb[c] = 0, x->rwf[c] = x->rwb[c] = 0;
     for (uint32_t i = 0; i < K; i++) {
@@ -147,20 +147,24 @@ static VF_ALWAYS_INLINE void lit_pieces(const uint32_t *table, const uint32_t *l
             w[c] += t_acc * mix(x0, y0, d[c], p[c]);
         w[3] += t_acc * mix(x0, y0, d[3], a);
         if (mirror) {
+            /* The mirror's piece K - 1 - i: its phi_f at its front (t_{i+1} here) and back, (i - 7) / 8 and
+             * (i - 8) / 8, in the back half; its phi_b, (7 - i) / 8 and (8 - i) / 8, in the front half. Its W_b
+             * gathers the front half's pieces, each in front of the last, and is then seen through the back half
+             * (t_back) once; its W_f gathers the back half's. */
             const size_t back = ((size_t)end[i + 1] * n + end[i]) * 4;
             const uint32_t *q = table + back, *e = lit + back;
-            /* its phi_f at its front (t_{i+1} here) and back: (i - 7) / 8, (i - 8) / 8; its phi_b: (7 - i) / 8,
-             * (8 - i) / 8 */
             const uint32_t x1 = front_half ? 7 - i : i - 7, y1 = front_half ? 8 - i : i - 8;
-            uint32_t *rw = front_half ? x->rwb : x->rwf, *other = front_half ? x->rwf : x->rwb;
-            for (int c = 0; c < 4; c++) {
-                const uint64_t v = mix(x1, y1, e[c], c < 3 ? q[c] : a);
-                rw[c] = (uint32_t)((v + 4) >> 3) + mul_q30(t, rw[c]);
-                other[c] = mul_q30(t, other[c]);
-            }
+            uint32_t *rw = front_half ? x->rwb : x->rwf;
+            for (int c = 0; c < 4; c++)
+                rw[c] = (uint32_t)((mix(x1, y1, e[c], c < 3 ? q[c] : a) + 4) >> 3) + mul_q30(t, rw[c]);
+            if (!front_half)
+                t_back = mul_q30(t_back, t);
         }
         t_acc = mul_q30(t_acc, t);
     }
+    if (mirror)
+        for (int c = 0; c < 4; c++)
+            x->rwb[c] = mul_q30(t_back, x->rwb[c]);
 }
 
 /* Entry e of the table (and its lit values) from Q.30 values: colours at most 1.0 (the pieces' roundings can take a
