@@ -175,6 +175,55 @@ static uint32_t span(const order2_job_t *o, uint32_t u, uint32_t y, bool buffere
                    : (buffered ? span_body(o, u, y, true, false, false) : span_body(o, u, y, false, false, false));
 }
 
+/* The default path (nearest lookup, 16-bit tables, no lut, full precision, one ray, unlit: composite.c's job->plain),
+ * where preint2 frames spend their time: what the loop reads for one row, set up once a row. Each slice's samples
+ * are at column u - cu of its row with the slice's one fraction; the buffered positions are the back entries times
+ * N2^2, the front entry's offset in the 3D table (the general loop buffers the entries themselves: a frame reads
+ * them in the path that wrote them). */
+typedef struct plain2 {
+    const uint8_t *front, *mid, *back; /* the three samples' first slice rows */
+    uint32_t front_cu, mid_cu, back_cu;
+    uint32_t front_fx, front_fy, mid_fx, mid_fy, back_fx, back_fy, row, n2;
+    const uint32_t *front_buf;         /* by u - front_shift, as the general loop's */
+    uint32_t *back_buf;                /* by u - back_shift */
+    uint32_t front_shift, back_shift;
+    const uint16_t *table;
+    uint16_t *next, *pixels;
+} plain2_t;
+
+static VF_ALWAYS_INLINE uint32_t plain_entry2(const uint8_t *p, uint32_t row, uint32_t fx, uint32_t fy, uint32_t n2)
+{
+    return vfi_entry_of_sample_n(n2, vfi_sample_rows(p, p + row, fx, fy));
+}
+
+/* The open pixels from u, which is open, to y, their front entries from the buffer (buffered) or sampled here; the
+ * first open pixel at or after y. A copy of the row's record in a local, as composite_order1.c's span_plain keeps
+ * one, so that the stores cannot make the compiler read it again. */
+static VF_ALWAYS_INLINE uint32_t span_plain2(const plain2_t *pl, uint32_t u, uint32_t y, bool buffered)
+{
+    const plain2_t l = *pl;
+    const uint32_t n2 = l.n2, plane = n2 * n2;
+    for (; u < y; u = vfi_next_open(l.next, u + 1)) {
+        const uint32_t f = buffered ? l.front_buf[u - l.front_shift]
+                                    : plane * plain_entry2(l.front + (u - l.front_cu), l.row, l.front_fx, l.front_fy, n2);
+        const uint32_t m = plain_entry2(l.mid + (u - l.mid_cu), l.row, l.mid_fx, l.mid_fy, n2);
+        const uint32_t b = plain_entry2(l.back + (u - l.back_cu), l.row, l.back_fx, l.back_fy, n2);
+        l.back_buf[u - l.back_shift] = b * plane;
+        vfi_blend_entry(l.pixels + (size_t)u * 4, l.next, u, l.table + ((size_t)f + m * n2 + b) * 4);
+    }
+    return u;
+}
+
+static VF_NOINLINE uint32_t span_plain2_buffered(const plain2_t *pl, uint32_t u, uint32_t y)
+{
+    return span_plain2(pl, u, y, true);
+}
+
+static VF_NOINLINE uint32_t span_plain2_sampled(const plain2_t *pl, uint32_t u, uint32_t y)
+{
+    return span_plain2(pl, u, y, false);
+}
+
 /* The union of a merge of two streams and a third stream, clipped to pixels [lo, hi], into walked; how many. */
 static uint32_t merge_three(run_merge_t *m, run_stream_t *s, int32_t lo, int32_t hi, vfi_span_t *walked)
 {
@@ -220,7 +269,8 @@ static uint32_t merge_three(run_merge_t *m, run_stream_t *s, int32_t lo, int32_t
 
 /* A row's walked spans, each cut into spans whose fronts are all buffered (the last slab walked them) or all
  * sampled here, as composite_order1.c's row() cuts them. */
-static void row(const order2_job_t *o, const vfi_span_t *walked, uint32_t count, const row_visits_t *last_row)
+static void row(const order2_job_t *o, const plain2_t *pl, const vfi_span_t *walked, uint32_t count,
+                const row_visits_t *last_row)
 {
     const vfi_span_t *last = last_row ? last_row->span : NULL;
     const uint32_t last_count = last_row ? last_row->count : 0;
@@ -233,7 +283,10 @@ static void row(const order2_job_t *o, const vfi_span_t *walked, uint32_t count,
                 k++;
             const bool buffered = k < last_count && last[k].a <= u;
             const uint32_t y = MIN(buffered ? last[k].b : k < last_count ? last[k].a : b, b);
-            u = span(o, u, y, buffered);
+            if (pl)
+                u = buffered ? span_plain2_buffered(pl, u, y) : span_plain2_sampled(pl, u, y);
+            else
+                u = span(o, u, y, buffered);
         }
     }
 }
@@ -301,7 +354,19 @@ void vfi_band_order2(const vf_renderer_t *r, row_job_t *job, const vfi_band_t *b
                            mid);
             vfi_stream_init(&s3, pairs + rb[0], pairs + rb[1], back, job->step_shift);
             now->count = merge_three(&m, &s3, u_lo, u_hi, now->span);
-            row(&o, now->span, now->count, last);
+            plain2_t pl;
+            if (job->plain) {
+                pl.front = job->row_data, pl.mid = o.mid_row_data, pl.back = job->back_row_data;
+                pl.front_cu = (uint32_t)front->cu, pl.mid_cu = (uint32_t)mid->cu, pl.back_cu = (uint32_t)back->cu;
+                pl.front_fx = front->fx, pl.mid_fx = mid->fx, pl.back_fx = back->fx;
+                pl.front_fy = job->front_fy, pl.mid_fy = o.mid_fy, pl.back_fy = job->back_fy;
+                pl.row = job->row, pl.n2 = o.t2.n2;
+                pl.front_buf = job->front_buf, pl.back_buf = job->back_buf;
+                pl.front_shift = (uint32_t)job->front_shift, pl.back_shift = (uint32_t)job->back_shift;
+                pl.table = o.t2.q15;
+                pl.next = job->next, pl.pixels = job->pixels;
+            }
+            row(&o, job->plain ? &pl : NULL, now->span, now->count, last);
         }
         place[0] = place[2];
     }
