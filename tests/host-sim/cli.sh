@@ -20,7 +20,7 @@ for cmd in render compare bench; do
 done
 expect_error "unknown command" "unknown command 'paint'" paint
 expect_error "unknown option" "--colour: unknown option" render phantom:sphere:8 --colour red -o "$tmp/x.png"
-expect_error "bad mode" "--mode lines: expected point, preint1 or preclass" render phantom:sphere:8 --mode lines -o "$tmp/x.png"
+expect_error "bad mode" "--mode lines: expected point, preint1, preclass or preint2" render phantom:sphere:8 --mode lines -o "$tmp/x.png"
 expect_error "bad view" "--view 30: expected AZ,EL" render phantom:sphere:8 --view 30 -o "$tmp/x.png"
 expect_error "bad size" "--size 0x10: expected WxH" render phantom:sphere:8 --size 0x10 -o "$tmp/x.png"
 expect_error "bad format" "--format bgr: expected rgb888, rgb565 or xrgb8888" render phantom:sphere:8 --format bgr -o "$tmp/x.png"

@@ -600,7 +600,7 @@ static void bad_arguments(void)
         CHECK_EQ(ref_render(&vol, &tf, 1, &p, &view, 8, 8, rgb, NULL), -1);
     }
     p = params(REF_MODE_POINT, 64);
-    p.mode = (ref_mode_t)3;
+    p.mode = (ref_mode_t)4; /* after REF_MODE_PREINT2 */
     CHECK_EQ(ref_render(&vol, &tf, 1, &p, &view, 8, 8, rgb, NULL), -1);
     p.mode = (ref_mode_t)-1;
     CHECK_EQ(ref_render(&vol, &tf, 1, &p, &view, 8, 8, rgb, NULL), -1);
