@@ -175,8 +175,9 @@ static uint32_t span(const order2_job_t *o, uint32_t u, uint32_t y, bool buffere
                    : (buffered ? span_body(o, u, y, true, false, false) : span_body(o, u, y, false, false, false));
 }
 
-/* The default path (nearest lookup, 16-bit tables, no lut, full precision, one ray, unlit: composite.c's job->plain),
- * where preint2 frames spend their time: what the loop reads for one row, set up once a row. Each slice's samples
+/* The default path (nearest lookup, 16-bit tables, full precision, one ray, unlit; with or without the lut, which
+ * preint2 corrects each segment by: it has no view table), where preint2 frames spend their time: what the loop
+ * reads for one row, set up once a row. Each slice's samples
  * are at column u - cu of its row with the slice's one fraction; the buffered positions are the back entries times
  * N2^2, the front entry's offset in the 3D table (the general loop buffers the entries themselves: a frame reads
  * them in the path that wrote them). */
@@ -189,6 +190,8 @@ typedef struct plain2 {
     uint32_t front_shift, back_shift;
     const uint16_t *table;
     uint16_t *next, *pixels;
+    const uint16_t *lut_f;             /* the lut, or NULL */
+    const uint32_t *lut_g;
 } plain2_t;
 
 static VF_ALWAYS_INLINE uint32_t plain_entry2(const uint8_t *p, uint32_t row, uint32_t fx, uint32_t fy, uint32_t n2)
@@ -199,7 +202,7 @@ static VF_ALWAYS_INLINE uint32_t plain_entry2(const uint8_t *p, uint32_t row, ui
 /* The open pixels from u, which is open, to y, their front entries from the buffer (buffered) or sampled here; the
  * first open pixel at or after y. A copy of the row's record in a local, as composite_order1.c's span_plain keeps
  * one, so that the stores cannot make the compiler read it again. */
-static VF_ALWAYS_INLINE uint32_t span_plain2(const plain2_t *pl, uint32_t u, uint32_t y, bool buffered)
+static VF_ALWAYS_INLINE uint32_t span_plain2(const plain2_t *pl, uint32_t u, uint32_t y, bool buffered, bool lut)
 {
     const plain2_t l = *pl;
     const uint32_t n2 = l.n2, plane = n2 * n2;
@@ -209,19 +212,30 @@ static VF_ALWAYS_INLINE uint32_t span_plain2(const plain2_t *pl, uint32_t u, uin
         const uint32_t m = plain_entry2(l.mid + (u - l.mid_cu), l.row, l.mid_fx, l.mid_fy, n2);
         const uint32_t b = plain_entry2(l.back + (u - l.back_cu), l.row, l.back_fx, l.back_fy, n2);
         l.back_buf[u - l.back_shift] = b * plane;
-        vfi_blend_entry(l.pixels + (size_t)u * 4, l.next, u, l.table + ((size_t)f + m * n2 + b) * 4);
+        const uint16_t *e = l.table + ((size_t)f + m * n2 + b) * 4;
+        if (!lut) {
+            vfi_blend_entry(l.pixels + (size_t)u * 4, l.next, u, e);
+        } else if (e[3]) { /* segment.h's vfi_correct, written out */
+            uint32_t seg[4], fa;
+            const uint64_t g = vfi_lut_at(l.lut_f, l.lut_g, e[3], &fa);
+            for (int c = 0; c < 3; c++)
+                seg[c] = vfi_lut_colour(e[c], g);
+            seg[3] = fa;
+            if (vfi_blend(l.pixels + (size_t)u * 4, seg))
+                l.next[u] = (uint16_t)(u + 1);
+        }
     }
     return u;
 }
 
 static VF_NOINLINE uint32_t span_plain2_buffered(const plain2_t *pl, uint32_t u, uint32_t y)
 {
-    return span_plain2(pl, u, y, true);
+    return pl->lut_f ? span_plain2(pl, u, y, true, true) : span_plain2(pl, u, y, true, false);
 }
 
 static VF_NOINLINE uint32_t span_plain2_sampled(const plain2_t *pl, uint32_t u, uint32_t y)
 {
-    return span_plain2(pl, u, y, false);
+    return pl->lut_f ? span_plain2(pl, u, y, false, true) : span_plain2(pl, u, y, false, false);
 }
 
 /* The union of a merge of two streams and a third stream, clipped to pixels [lo, hi], into walked; how many. */
@@ -308,6 +322,9 @@ void vfi_band_order2(const vf_renderer_t *r, row_job_t *job, const vfi_band_t *b
     o.job = job;
     o.t2 = r->lookup2;
     o.trilinear = r->params.lookup == VF_LOOKUP_TRILINEAR;
+    /* the plain loop: composite.c's plain path, but for the lut, which it takes too */
+    const bool plain = !r->general_loops && !o.trilinear && o.t2.q15 && !job->sample_shift && !job->inter_shift &&
+                       job->step == 65536 && !(VF_LIGHTING && job->shading);
     slice_place_t place[3];
     vfi_place_slice(r, 0, &place[0]);
     uint32_t q = 0; /* the order-2 slab's number; slab q spans slices 2q .. 2q + 2 */
@@ -355,7 +372,7 @@ void vfi_band_order2(const vf_renderer_t *r, row_job_t *job, const vfi_band_t *b
             vfi_stream_init(&s3, pairs + rb[0], pairs + rb[1], back, job->step_shift);
             now->count = merge_three(&m, &s3, u_lo, u_hi, now->span);
             plain2_t pl;
-            if (job->plain) {
+            if (plain) {
                 pl.front = job->row_data, pl.mid = o.mid_row_data, pl.back = job->back_row_data;
                 pl.front_cu = (uint32_t)front->cu, pl.mid_cu = (uint32_t)mid->cu, pl.back_cu = (uint32_t)back->cu;
                 pl.front_fx = front->fx, pl.mid_fx = mid->fx, pl.back_fx = back->fx;
@@ -365,8 +382,9 @@ void vfi_band_order2(const vf_renderer_t *r, row_job_t *job, const vfi_band_t *b
                 pl.front_shift = (uint32_t)job->front_shift, pl.back_shift = (uint32_t)job->back_shift;
                 pl.table = o.t2.q15;
                 pl.next = job->next, pl.pixels = job->pixels;
+                pl.lut_f = job->lookup.lut_f, pl.lut_g = job->lookup.lut_g;
             }
-            row(&o, job->plain ? &pl : NULL, now->span, now->count, last);
+            row(&o, plain ? &pl : NULL, now->span, now->count, last);
         }
         place[0] = place[2];
     }
