@@ -205,7 +205,7 @@ static VF_ALWAYS_INLINE void table_part(const vfi_order2_pieces_t *pieces, uint3
     for (uint32_t f = part; f < n2; f += parts)
         for (uint32_t m = 0; m < n2; m++)
             for (uint32_t b = f; b < n2; b++) {
-                uint32_t end[K + 1], c[3], wf[4] = {0, 0, 0, 0}, wb[4] = {0, 0, 0, 0};
+                uint32_t end[K + 1], c[3], wf[4], wb[4]; /* wf, wb: set and read only with_lit */
                 pair2_t x;
                 piece_ends(&rule, f, m, b, end);
                 const bool mirror = b != f;
