@@ -434,6 +434,55 @@ static void last_slab_composited(void)
     }
 }
 
+/* Lighting, frames: a sphere of opaque white, lit from the upper right. A lighting renderer's unlit frame is a plain
+ * renderer's to the bit; lit, preint2 is preint1's picture within a few levels (both integrate the same lit
+ * field, with lighting interpolated across slabs of one slice or two), brightest towards the light. */
+#define SPHERE 24
+static void lit_sphere(void)
+{
+    static uint8_t ball[SPHERE * SPHERE * SPHERE];
+    for (int z = 0; z < SPHERE; z++)
+        for (int y = 0; y < SPHERE; y++)
+            for (int x = 0; x < SPHERE; x++) {
+                const double d = sqrt((x - 11.5) * (x - 11.5) + (y - 11.5) * (y - 11.5) + (z - 11.5) * (z - 11.5));
+                ball[(z * SPHERE + y) * SPHERE + x] = (uint8_t)(d < 9 ? 200 : d < 10 ? 200 - 200 * (d - 9) : 0);
+            }
+    const vf_volume_t vol = {{SPHERE, SPHERE, SPHERE}, {65536, 65536, 65536}, VF_VOXEL_U8, ball};
+    static const vf_tf_point_t white[] = {{0, 65535, 65535, 65535, 0}, {100 << 8, 65535, 65535, 65535, 65535}};
+    const vf_tf_t tf = {white, 2};
+    vf_lighting_t l;
+    vf_lighting_default(&l);
+    l.lights[0].azimuth = 65536 / 8, l.lights[0].elevation = 65536 / 16; /* 45 degrees right, 22.5 up */
+    static unsigned char px[4][64 * 64 * 3];
+    const vf_view_t view = {1000, 700, 0, 65536};
+    for (int k = 0; k < 4; k++) { /* preint2 plain, preint2 lighting renderer unlit, preint2 lit, preint1 lit */
+        vf_params_t p;
+        vf_params_default(&p);
+        p.mode = k == 3 ? VF_MODE_PREINT1 : VF_MODE_PREINT2;
+        p.lighting = k > 0;
+        vf_arena_t arena;
+        vf_arena_init(&arena, arena_buf[0], sizeof arena_buf[0]);
+        vf_renderer_t *r;
+        CHECK_EQ(vf_renderer_create(&r, &p, &vol, &arena), VF_OK);
+        CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
+        CHECK_EQ(vf_renderer_set_tf(r, &tf), VF_OK);
+        if (p.lighting)
+            CHECK_EQ(vf_renderer_set_lighting(r, k == 1 ? NULL : &l), VF_OK);
+        const vf_image_t im = {px[k], 64, 64, 64 * 3, VF_FORMAT_RGB888};
+        CHECK_EQ(vf_renderer_draw(r, &view, &im, scratch, sizeof scratch), VF_OK);
+    }
+    CHECK(memcmp(px[0], px[1], sizeof px[0]) == 0);
+    int worst = 0;
+    for (size_t k = 0; k < sizeof px[0]; k++) {
+        const int d = abs((int)px[2][k] - (int)px[3][k]);
+        worst = d > worst ? d : worst;
+    }
+    const unsigned char *lit_side = px[2] + (24 * 64 + 42) * 3, *dark_side = px[2] + (40 * 64 + 22) * 3;
+    CHECK_MSG(lit_side[0] > dark_side[0] + 40, "towards the light %u, away from it %u", lit_side[0], dark_side[0]);
+    CHECK_MSG(worst <= 12, "lit preint2 %d levels from lit preint1", worst);
+    printf("# lit sphere: preint2 at most %d levels from preint1\n", worst);
+}
+
 /* What preint2 does not take: partial slabs (unsupported), bilinear lookups (its own is trilinear) and trilinear
  * elsewhere, tables outside 16..128. */
 static void refused(void)
@@ -470,5 +519,5 @@ static void refused(void)
 CHECK_CASES({"table_against_double", table_against_double}, {"lit_against_double", lit_against_double}, {"parts_equal_whole", parts_equal_whole},
             {"mirrors_and_bounds", mirrors_and_bounds}, {"line_is_order1", line_is_order1},
             {"general_equals_default", general_equals_default}, {"threads_identical", threads_identical},
-            {"last_slab_composited", last_slab_composited}, {"refused", refused});
+            {"last_slab_composited", last_slab_composited}, {"lit_sphere", lit_sphere}, {"refused", refused});
 CHECK_RUN("order2")
