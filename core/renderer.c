@@ -9,6 +9,7 @@
 static vf_status_t check_params(const vf_params_t *p);
 static vf_status_t check_volume(const vf_volume_t *v);
 static size_t intermediate_pixels(const uint32_t dims[3], uint32_t rays, uint32_t *max_w, uint32_t *max_ni);
+static size_t extent_bytes(const uint32_t dims[3], uint32_t rays);
 static size_t table_value_bytes(const vf_params_t *p);
 static size_t table_entries(const vf_params_t *p);
 static size_t table_bytes(const vf_params_t *p);
@@ -103,7 +104,8 @@ vf_status_t vf_renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, size
     for (int a = 0; a < 3; a++)
         total += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
     total += vfi_classify_bytes(n) + table_bytes(p) + lit_table_bytes(p) + normals_bytes(p, vol) + order2_bytes(p);
-    total += vfi_arena_block(sizeof(uint16_t) * 4 * intermediate_pixels(vol->dims, p->rays, &w, &ni));
+    total += vfi_arena_block(sizeof(uint16_t) * 4 * intermediate_pixels(vol->dims, p->rays, &w, &ni)) +
+             extent_bytes(vol->dims, p->rays);
     *bytes = total;
     return VF_OK;
 }
@@ -146,7 +148,8 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
         r->view_table = vfi_arena_alloc(arena, table_entries(p) * 4 * sizeof(uint16_t));
     r->intermediate_max = intermediate_pixels(vol->dims, p->rays, &r->max_int_w, &r->max_ni);
     r->intermediate = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * r->intermediate_max);
-    if (s != VF_OK || !r->slices[0] || !r->slices[1] || !r->slices[2] || !r->table ||
+    r->row_extent = VF_SPECIAL_LOOPS ? vfi_arena_alloc(arena, extent_bytes(vol->dims, p->rays)) : NULL;
+    if (s != VF_OK || (VF_SPECIAL_LOOPS && !r->row_extent) || !r->slices[0] || !r->slices[1] || !r->slices[2] || !r->table ||
         (lut && (!r->lut_f || !r->lut_g)) || (has_view_table(p) && !r->view_table) || !r->intermediate)
         return VF_ERR_NOMEM; /* the caller's arena is theirs to reset; *out stays NULL */
 #if VF_LIGHTING
@@ -172,7 +175,8 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
         r->memory.slices += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
     r->memory.classify = vfi_classify_bytes(n);
     r->memory.tables = table_bytes(p);
-    r->memory.intermediate = vfi_arena_block(sizeof(uint16_t) * 4 * r->intermediate_max);
+    r->memory.intermediate = vfi_arena_block(sizeof(uint16_t) * 4 * r->intermediate_max) +
+                             extent_bytes(vol->dims, p->rays);
     r->memory.tables += lit_table_bytes(p);
     r->memory.normals = normals_bytes(p, vol);
     r->memory.order2 = order2_bytes(p);
@@ -444,7 +448,8 @@ static vf_status_t check_params(const vf_params_t *p)
         return VF_ERR_ARG;
     if (p->mode == VF_MODE_PREINT2 && (!VF_ORDER2 || p->partial_slabs))
         return VF_ERR_UNSUPPORTED;
-    if (p->normal_bits < 8 || p->normal_bits > 16 || p->normal_bits % 2 || (unsigned)p->shade_lookup >= VF_LOOKUP_COUNT)
+    if (p->normal_bits < 8 || p->normal_bits > 16 || p->normal_bits % 2 ||
+        (unsigned)p->shade_lookup > VF_LOOKUP_BILINEAR) /* a shade is nearest or bilinear, never trilinear */
         return VF_ERR_ARG;
     /* lighting in builds without it, and lighting with partial slabs: docs/algorithm.md, section 7 */
     if (p->lighting && (!VF_LIGHTING || p->partial_slabs))
@@ -616,6 +621,22 @@ static size_t intermediate_pixels(const uint32_t dims[3], uint32_t rays, uint32_
         *max_ni = l.ni > *max_ni ? l.ni : *max_ni;
     }
     return most;
+}
+
+/* The row extents' bytes (renderer.h): two values for each row of the tallest intermediate image of any view, in
+ * builds that have them (VF_SPECIAL_LOOPS). */
+static size_t extent_bytes(const uint32_t dims[3], uint32_t rays)
+{
+    if (!VF_SPECIAL_LOOPS)
+        return 0;
+    uint32_t most = 0;
+    for (int k = 0; k < 3; k++) {
+        vfi_layout_t l;
+        vfi_layout(dims, k, &l);
+        const uint32_t h = rays * (l.nj + l.nk - 2) + 1; /* within VF_MAX_INTERMEDIATE: intermediate_pixels checks */
+        most = h > most ? h : most;
+    }
+    return vfi_arena_block(sizeof(uint16_t) * 2 * most);
 }
 
 /* Rewind to the mark and run-length encode all three copies; on VF_ERR_NOMEM record what would have fitted. */

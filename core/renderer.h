@@ -100,6 +100,9 @@ struct vf_renderer {
     uint16_t *intermediate;  /* [int_w * int_h * 4] r, g, b, a in Q1.15 */
     size_t intermediate_max; /* pixels reserved */
     uint32_t max_int_w;      /* widest intermediate row of any view, for scratch sizing */
+    uint16_t *row_extent;    /* [rows][2] of the frame's intermediate image: its first pixel with anything in it and
+                              * one past its last (0, 0 for an empty row), written as each band finishes, so that
+                              * the warp leaves empty space alone */
     uint32_t max_ni;         /* widest slice of any principal axis */
 
     vf_memory_t memory;

@@ -4,8 +4,9 @@
  *
  * Each final pixel's intermediate point is u0 + x du/dx + y du/dy in Q32.32, exact (no accumulated rounding);
  * the bilinear weights are Q0.16, the colour Q1.15 until it is packed into the output format. Per row, the
- * pixels whose footprint misses the intermediate image get the background without being sampled, and those
- * whose four neighbours are all inside it take a path without bounds checks.
+ * pixels whose footprint misses the box of non-empty intermediate pixels get the background without being
+ * sampled, and those whose four neighbours are all inside the image take a path without bounds checks, a loop for
+ * each output format.
  */
 #include "fixmath.h"
 #include "renderer.h"
@@ -40,6 +41,94 @@ static VF_ALWAYS_INLINE bool empty_neighbours(const uint16_t *p00, const uint16_
             p01[6]) == 0;
 }
 
+/* The pixel px (Q1.15 r, g, b, a) as the format's bytes, the background behind it when there is one: store_pixel
+ * with the format and the background constants, for the inner loop's specialisations. */
+static VF_ALWAYS_INLINE void store_as(const warp_row_t *w, unsigned char *dst, const uint32_t px[4], vf_format_t format,
+                                      bool have_bg)
+{
+    uint32_t c[3] = {px[0], px[1], px[2]};
+    if (have_bg) {
+        const uint32_t t = VFI_ONE_Q15 - (px[3] > VFI_ONE_Q15 ? VFI_ONE_Q15 : px[3]);
+        c[0] += (t * w->bg[0] + 0x4000u) >> 15;
+        c[1] += (t * w->bg[1] + 0x4000u) >> 15;
+        c[2] += (t * w->bg[2] + 0x4000u) >> 15;
+    }
+    c[0] = c[0] > VFI_ONE_Q15 ? VFI_ONE_Q15 : c[0];
+    c[1] = c[1] > VFI_ONE_Q15 ? VFI_ONE_Q15 : c[1];
+    c[2] = c[2] > VFI_ONE_Q15 ? VFI_ONE_Q15 : c[2];
+    switch (format) {
+    case VF_FORMAT_RGB888:
+        dst[0] = (unsigned char)((c[0] * 255u + 0x4000u) >> 15);
+        dst[1] = (unsigned char)((c[1] * 255u + 0x4000u) >> 15);
+        dst[2] = (unsigned char)((c[2] * 255u + 0x4000u) >> 15);
+        break;
+    case VF_FORMAT_RGB565: {
+        uint32_t word = ((c[0] * 31u + 0x4000u) >> 15) << 11 | ((c[1] * 63u + 0x4000u) >> 15) << 5 |
+                        ((c[2] * 31u + 0x4000u) >> 15);
+        dst[0] = (unsigned char)(word & 0xFFu);
+        dst[1] = (unsigned char)(word >> 8);
+        break;
+    }
+    default: /* VF_FORMAT_XRGB8888: bytes B, G, R, X */
+        dst[0] = (unsigned char)((c[2] * 255u + 0x4000u) >> 15);
+        dst[1] = (unsigned char)((c[1] * 255u + 0x4000u) >> 15);
+        dst[2] = (unsigned char)((c[0] * 255u + 0x4000u) >> 15);
+        dst[3] = 0xFFu;
+        break;
+    }
+}
+
+/* count pixels from dst, each with all four neighbours inside the image (u, v >= 0: the shifts are floors), the
+ * first at (u, v), then a step of (du, dv) a pixel; the format and background constants (inner_span). */
+static VF_ALWAYS_INLINE void inner_body(const warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v,
+                                        int64_t du, int64_t dv, unsigned char *dst, uint32_t count,
+                                        const unsigned char *background, vf_format_t format, bool have_bg)
+{
+    const uint32_t bpp = vf_format_bytes(format), mask = w->fraction_mask;
+    for (uint32_t x = 0; x < count; x++, u += du, v += dv, dst += bpp) {
+        const uint16_t *p00 = img + ((size_t)(v >> 32) * (size_t)iw + (size_t)(u >> 32)) * 4;
+        const uint16_t *p01 = p00 + iw * 4;
+        if (empty_neighbours(p00, p01)) { /* exactly what the weights would give: the background */
+            for (uint32_t k = 0; k < bpp; k++)
+                dst[k] = background[k];
+            continue;
+        }
+        const uint32_t fx = (uint32_t)(u >> 16) & mask, fy = (uint32_t)(v >> 16) & mask;
+        const uint32_t w11 = (fx * fy + 0x8000u) >> 16;
+        const uint32_t w00 = 65536u - fx - fy + w11, w10 = fx - w11, w01 = fy - w11;
+        /* written out: at -O2 gcc keeps a loop over the four channels, half again the instructions */
+        const uint32_t px[4] = {(p00[0] * w00 + p00[4] * w10 + p01[0] * w01 + p01[4] * w11 + 0x8000u) >> 16,
+                                (p00[1] * w00 + p00[5] * w10 + p01[1] * w01 + p01[5] * w11 + 0x8000u) >> 16,
+                                (p00[2] * w00 + p00[6] * w10 + p01[2] * w01 + p01[6] * w11 + 0x8000u) >> 16,
+                                (p00[3] * w00 + p00[7] * w10 + p01[3] * w01 + p01[7] * w11 + 0x8000u) >> 16};
+        store_as(w, dst, px, format, have_bg);
+    }
+}
+
+/* inner_body for the row's format and background: a loop for each with VF_SPECIAL_LOOPS, else one that asks */
+static void inner_span(const warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v, int64_t du,
+                       int64_t dv, unsigned char *dst, uint32_t count, const unsigned char *background)
+{
+    if (!VF_SPECIAL_LOOPS) {
+        inner_body(w, img, iw, u, v, du, dv, dst, count, background, w->format, w->have_bg);
+        return;
+    }
+    switch (w->format) {
+    case VF_FORMAT_RGB888:
+        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, true)
+                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, false);
+        break;
+    case VF_FORMAT_RGB565:
+        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, true)
+                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, false);
+        break;
+    default:
+        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, true)
+                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, false);
+        break;
+    }
+}
+
 vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint32_t y0, uint32_t y1)
 {
     const vf_factor_t *f = &r->factor;
@@ -68,14 +157,29 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
 
     const int64_t iw = f->int_w, ih = f->int_h;
     const uint16_t *img = r->intermediate;
+    /* The box of intermediate pixels with anything in them, from the bands' row extents (VF_SPECIAL_LOOPS; else
+     * the whole image): a final pixel whose footprint misses it is the background, however far inside the image it
+     * lies. */
+    int64_t box_u0 = 0, box_u1 = iw, box_v0 = 0, box_v1 = ih;
+    if (VF_SPECIAL_LOOPS) {
+        box_u0 = iw, box_u1 = 0, box_v0 = ih, box_v1 = 0;
+        for (int64_t v = 0; v < ih; v++) {
+            const int64_t lo = r->row_extent[2 * v], hi = r->row_extent[2 * v + 1];
+            if (lo >= hi)
+                continue;
+            box_u0 = lo < box_u0 ? lo : box_u0, box_u1 = hi > box_u1 ? hi : box_u1;
+            box_v0 = v < box_v0 ? v : box_v0, box_v1 = v + 1;
+        }
+    }
     for (uint32_t y = y0; y < y1; y++) {
         unsigned char *row = (unsigned char *)image->pixels + (size_t)y * image->stride;
         const int64_t u_row = f->u0_q32 + (int64_t)y * f->du_dy_q32, v_row = f->v0_q32 + (int64_t)y * f->dv_dy_q32;
-        /* Pixels [touch0, touch1) see some of the image (u in (-1, w), v in (-1, h)); within them,
-         * [inner0, inner1) have all four neighbours inside (u in [0, w - 1), v in [0, h - 1)). */
+        /* Pixels [touch0, touch1) see some of the box (u in (u0 - 1, u1), v in (v0 - 1, v1): none when it is
+         * empty); within them, [inner0, inner1) have all four neighbours inside the image (u in [0, w - 1), v in
+         * [0, h - 1)). */
         int64_t a0, a1, b0, b1, touch0, touch1, inner0, inner1;
-        span(u_row, f->du_dx_q32, -ONE_Q32, iw * ONE_Q32, image->width, &a0, &a1);
-        span(v_row, f->dv_dx_q32, -ONE_Q32, ih * ONE_Q32, image->width, &b0, &b1);
+        span(u_row, f->du_dx_q32, (box_u0 - 1) * ONE_Q32, box_u1 * ONE_Q32, image->width, &a0, &a1);
+        span(v_row, f->dv_dx_q32, (box_v0 - 1) * ONE_Q32, box_v1 * ONE_Q32, image->width, &b0, &b1);
         touch0 = a0 > b0 ? a0 : b0;
         touch1 = a1 < b1 ? a1 : b1;
         span(u_row, f->du_dx_q32, 0, (iw - 1) * ONE_Q32, image->width, &a0, &a1);
@@ -84,6 +188,8 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
         inner1 = a1 < b1 ? a1 : b1;
         if (touch1 < touch0)
             touch0 = touch1 = 0;
+        inner0 = inner0 > touch0 ? inner0 : touch0; /* inside the box's footprint too */
+        inner1 = inner1 < touch1 ? inner1 : touch1;
         if (inner1 <= inner0)
             inner0 = inner1 = touch0;
 
@@ -92,24 +198,8 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
                 row[x * bpp + k] = background[k];
         for (int64_t x = touch0; x < inner0; x++)
             pixel_general(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
-        int64_t u = u_row + inner0 * f->du_dx_q32, v = v_row + inner0 * f->dv_dx_q32;
-        for (int64_t x = inner0; x < inner1; x++, u += f->du_dx_q32, v += f->dv_dx_q32) {
-            /* all four neighbours inside: u, v >= 0, so the shifts are floors */
-            uint32_t fx = (uint32_t)(u >> 16) & w.fraction_mask, fy = (uint32_t)(v >> 16) & w.fraction_mask;
-            uint32_t w11 = (fx * fy + 0x8000u) >> 16;
-            uint32_t w00 = 65536u - fx - fy + w11, w10 = fx - w11, w01 = fy - w11;
-            const uint16_t *p00 = img + ((size_t)(v >> 32) * (size_t)iw + (size_t)(u >> 32)) * 4;
-            const uint16_t *p01 = p00 + iw * 4;
-            if (empty_neighbours(p00, p01)) { /* exactly what the weights would give: the background */
-                for (uint32_t k = 0; k < bpp; k++)
-                    row[x * bpp + k] = background[k];
-                continue;
-            }
-            uint32_t px[4];
-            for (int c = 0; c < 4; c++)
-                px[c] = (p00[c] * w00 + p00[4 + c] * w10 + p01[c] * w01 + p01[4 + c] * w11 + 0x8000u) >> 16;
-            store_pixel(&w, row + x * bpp, px);
-        }
+        inner_span(&w, img, iw, u_row + inner0 * f->du_dx_q32, v_row + inner0 * f->dv_dx_q32, f->du_dx_q32,
+                   f->dv_dx_q32, row + inner0 * bpp, (uint32_t)(inner1 - inner0), background);
         for (int64_t x = inner1 > touch0 ? inner1 : touch0; x < touch1; x++)
             pixel_general(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
         for (int64_t x = touch1; x < image->width; x++)
@@ -180,33 +270,8 @@ static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, uns
     store_pixel(w, dst, acc);
 }
 
-/* C + (1 - A) background, packed. */
+/* C + (1 - A) background, packed: store_as for any format, outside the inner loop. */
 static void store_pixel(const warp_row_t *w, unsigned char *dst, const uint32_t px[4])
 {
-    uint32_t c[3];
-    for (int n = 0; n < 3; n++) {
-        c[n] = px[n];
-        if (w->have_bg)
-            c[n] += ((VFI_ONE_Q15 - (px[3] > VFI_ONE_Q15 ? VFI_ONE_Q15 : px[3])) * w->bg[n] + 0x4000u) >> 15;
-        c[n] = c[n] > VFI_ONE_Q15 ? VFI_ONE_Q15 : c[n];
-    }
-    switch (w->format) {
-    case VF_FORMAT_RGB888:
-        for (int n = 0; n < 3; n++)
-            dst[n] = (unsigned char)((c[n] * 255u + 0x4000u) >> 15);
-        break;
-    case VF_FORMAT_RGB565: {
-        uint32_t word = ((c[0] * 31u + 0x4000u) >> 15) << 11 | ((c[1] * 63u + 0x4000u) >> 15) << 5 |
-                        ((c[2] * 31u + 0x4000u) >> 15);
-        dst[0] = (unsigned char)(word & 0xFFu);
-        dst[1] = (unsigned char)(word >> 8);
-        break;
-    }
-    default: /* VF_FORMAT_XRGB8888: bytes B, G, R, X */
-        dst[0] = (unsigned char)((c[2] * 255u + 0x4000u) >> 15);
-        dst[1] = (unsigned char)((c[1] * 255u + 0x4000u) >> 15);
-        dst[2] = (unsigned char)((c[0] * 255u + 0x4000u) >> 15);
-        dst[3] = 0xFFu;
-        break;
-    }
+    store_as(w, dst, px, w->format, w->have_bg);
 }

@@ -148,6 +148,13 @@ static vfp_status_t setup(const sim_scene_t *s, variant_t *v, char *err, size_t 
         status = vfp_render_set_tf(&v->r, s->points, s->npoints, err, errlen);
         classify_ms = v->r.ms_classify;
     }
+    if (status == VFP_OK && v->params.lighting) { /* the scene's lights and material (scene.h) */
+        vf_status_t ls = vf_renderer_set_lighting(v->r.core, &s->lighting);
+        if (ls != VF_OK) {
+            snprintf(err, errlen, "cannot light the frames: %s", vf_status_text(ls));
+            status = VFP_ERR;
+        }
+    }
     if (status) {
         vfp_render_close(&v->r);
         return status;

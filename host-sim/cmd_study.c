@@ -15,7 +15,7 @@
 #include "study.h"
 
 static const char usage[] =
-    "usage: volfix-sim study [--quick] -o DIR [--threads N]\n"
+    "usage: volfix-sim study [--quick] [--lighting-only] -o DIR [--threads N]\n"
     "The fixed-point precision study. Renders scenes with the core in many configurations and measures each\n"
     "against the double reference of the same algorithm (the fixed-point error alone) and against the ground\n"
     "truth ray caster (the algorithm's own error), with the memory it needs. One factor at a time around the\n"
@@ -23,12 +23,15 @@ static const char usage[] =
     "warp): bits of the tables, samples, intermediate image and warp; table size with lookup; correction;\n"
     "mode with smooth and sharp transfer functions; rays per voxel column (1 to 16) with whole and partial\n"
     "slabs at 256 and 1024 entries (the full study counts their instructions per frame with valgrind's\n"
-    "callgrind when it is installed). Writes to DIR: results.csv, summary.json, plots (PNG,\n"
+    "callgrind when it is installed); lit, the bits of the normal codes (against unquantised normals), of the\n"
+    "shade table and of the front-weighted table. Writes to DIR: results.csv, summary.json, plots (PNG,\n"
     "with gnuplot), image strips and report.md with a recommended configuration for a Raspberry Pi class\n"
     "board and for a microcontroller with 256 KB of RAM.\n\n"
     "  --quick              the subset that runs in make test (under two minutes)\n"
+    "  --lighting-only      the lighting stages alone (with --quick, their quick subset)\n"
     "  -o DIR               where to write (created)\n"
-    "  --threads N          threads for the ground truth (default 2)\n";
+    "  --threads N          threads for the ground truth (default 2)\n"
+    "The sample volumes (neghip, engine, bucky, ...) come from the folder $VOLFIX_DATA, when it is set.\n";
 
 typedef struct sweep_ctx {
     study_t *st;
@@ -215,6 +218,8 @@ int sim_cmd_study(int argc, char **argv)
             return VFP_EXIT_OK;
         } else if (strcmp(argv[i], "--quick") == 0) {
             st->quick = 1;
+        } else if (strcmp(argv[i], "--lighting-only") == 0) {
+            st->lighting_only = 1;
         } else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
             st->dir = argv[++i];
         } else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
@@ -242,10 +247,19 @@ int sim_cmd_study(int argc, char **argv)
     }
     st->started_ms = vfp_now_ms();
     st->progress_tty = isatty(2);
-    const char *data = getenv("VOLFIX_DATA") ? getenv("VOLFIX_DATA") : "../shared/data";
+    /* The sample volumes' folder comes from the environment only (make sets it): without it the study says so
+     * and measures the phantoms alone. */
+    const char *data = getenv("VOLFIX_DATA");
+    if (!data || !data[0]) {
+        fprintf(stderr, "volfix-sim study: VOLFIX_DATA is not set: the sample volumes are left out (set it to "
+                        "their folder)\n");
+        data = NULL;
+    }
     char path[1024];
     sweep_ctx_t c = {.st = st};
     const uint32_t small = 256;
+    if (st->lighting_only)
+        goto lighting;
 
     /* Marschner-Lobb 41^3, the test signal made to show reconstruction error: sharp and smooth. The sharp scene
      * is rendered at 512x512, the size of the claim that pre-integration is at least 6 dB closer to the truth. */
@@ -331,8 +345,8 @@ int sim_cmd_study(int argc, char **argv)
     for (size_t i = 0; i < sizeof shared / sizeof shared[0] && !c.failed; i++) {
         if (st->quick && !shared[i].quick)
             continue;
-        snprintf(path, sizeof path, "%s/%s", data, shared[i].file);
-        if (!exists(path))
+        snprintf(path, sizeof path, "%s/%s", data ? data : "", shared[i].file);
+        if (!data || !exists(path))
             continue;
         int s = study_add_scene(st, shared[i].label, path, shared[i].preset, shared[i].az, shared[i].el, 1, small,
                                 c.err, sizeof c.err);
@@ -349,8 +363,8 @@ int sim_cmd_study(int argc, char **argv)
     /* The microcontroller's scene (boards/mps2-an386: bucky at 64x64) with the table it can hold, one and two
      * rays, whole and partial slabs (what the options are worth where a voxel covers about one output pixel), and
      * each candidate configuration for such a board. */
-    snprintf(path, sizeof path, "%s/bucky.nhdr", data);
-    if (!c.failed && exists(path)) {
+    snprintf(path, sizeof path, "%s/bucky.nhdr", data ? data : "");
+    if (!c.failed && data && exists(path)) {
         int s = study_add_scene(st, "bucky-sharp-64", path, "sharp", 30, 20, 1, 64, c.err, sizeof c.err);
         if (s < 0)
             c.failed = 1;
@@ -377,8 +391,8 @@ int sim_cmd_study(int argc, char **argv)
     for (size_t v = 0; v < 5 && !c.failed; v++) {
         if (st->quick && v != 1 && v != 2)
             continue;
-        snprintf(path, sizeof path, "%s/%s", data, fixed_volumes[v]);
-        if (!exists(path))
+        snprintf(path, sizeof path, "%s/%s", data ? data : "", fixed_volumes[v]);
+        if (!data || !exists(path))
             continue;
         for (int w = 0; w < 5 && !c.failed; w++) {
             char label[64];
@@ -390,6 +404,10 @@ int sim_cmd_study(int argc, char **argv)
             run(&c, s, &p, "fixed_point", label);
         }
     }
+
+lighting: /* the lighting stages (study_lit.c) */
+    if (!c.failed && study_lit(st, data, c.err, sizeof c.err))
+        c.failed = 1;
 
     if (st->progress_tty)
         fprintf(stderr, "\n");

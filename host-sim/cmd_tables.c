@@ -1,7 +1,8 @@
 /*
  * cmd_tables.c: volfix-sim tables: build a pre-integrated table with each builder (the core's O(N^2)
  * incremental one, its O(N^3) brute-force oracle), time them, measure them against the double reference
- * builder in LSB, and draw the table so a person can see it.
+ * builder in LSB, and draw the table so a person can see it; with --lit, the same for the table with its
+ * front-weighted values for lighting.
  */
 #include <math.h>
 #include <stdio.h>
@@ -17,7 +18,7 @@
 
 static const char usage[] =
     "usage: volfix-sim tables [--preset NAME | --tf FILE] [--size N] [--slab D] [--bits 8|16] [-o TABLE.png]\n"
-    "                         [--json] [--repeat R]\n"
+    "                         [--json] [--repeat R] [--lit]\n"
     "       volfix-sim tables --order 2 ...   the order-2 (preint2) table: see volfix-sim tables --order 2 --help\n"
     "Build the pre-integrated table of a transfer function with the core's incremental O(N^2) builder (Lum et\n"
     "al. 2004) and with its brute-force O(N^3) oracle; print the build time of each (best of R runs) and the\n"
@@ -29,8 +30,13 @@ static const char usage[] =
     "  --repeat R           time each builder R times and report the fastest (default 5; brute force at most 3)\n"
     "  -o FILE              draw the table: front entry across, back entry down, premultiplied colour on\n"
     "                       the left and opacity (grey) on the right\n"
+    "  --lit                also build the table with its front-weighted values for lighting (D_f, S_f;\n"
+    "                       docs/algorithm.md section 7) with each builder: their time beside the plain\n"
+    "                       build's, the lit table's memory, and its values against the double reference's\n"
     "  --json               print one object: size, incremental_ms, bruteforce_ms, max_err_lsb, mean_err_lsb,\n"
-    "                       and the same for the brute-force builder and between the two\n";
+    "                       and the same for the brute-force builder and between the two (with --lit also\n"
+    "                       lit_incremental_ms, lit_bruteforce_ms, lit_max_err_lsb, lit_mean_err_lsb,\n"
+    "                       lit_bruteforce_max_err_lsb, table_bytes, lit_table_bytes)\n";
 
 typedef struct errors {
     double max, mean;
@@ -68,13 +74,15 @@ static errors_t between(const uint16_t *a, const uint16_t *b, size_t entries)
     return e;
 }
 
+/* The best of `repeat` builds; with lit_out, of the table and its front-weighted values together. */
 static double build_ms(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_builder_t builder, int repeat,
-                       vf_arena_t *arena, uint16_t *out, vf_status_t *status)
+                       vf_arena_t *arena, uint16_t *out, uint16_t *lit_out, vf_status_t *status)
 {
     double best = 1e30;
     for (int k = 0; k < repeat; k++) {
         double t0 = vfp_now_ms();
-        *status = vf_table_preint(tf, n, slab_q16, builder, arena, out);
+        *status = lit_out ? vf_table_preint_lit(tf, n, slab_q16, builder, arena, out, lit_out)
+                          : vf_table_preint(tf, n, slab_q16, builder, arena, out);
         double ms = vfp_now_ms() - t0;
         best = ms < best ? ms : best;
     }
@@ -123,7 +131,7 @@ int sim_cmd_tables(int argc, char **argv)
     const char *preset = NULL, *tf_file = NULL, *out = NULL;
     long n = 256, bits = 16, repeat = 5;
     double slab = 1.0;
-    int json = 0;
+    int json = 0, lit = 0;
     char err[VFP_ERR_LEN];
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -133,6 +141,9 @@ int sim_cmd_tables(int argc, char **argv)
             return VFP_EXIT_OK;
         } else if (strcmp(a, "--json") == 0) {
             json = 1;
+            continue;
+        } else if (strcmp(a, "--lit") == 0) {
+            lit = 1;
             continue;
         } else if (!v) {
             fprintf(stderr, "volfix-sim tables: %s: unknown option or missing value (see --help)\n", a);
@@ -193,21 +204,38 @@ int sim_cmd_tables(int argc, char **argv)
     size_t scratch_bytes = vf_table_scratch_bytes((uint32_t)n);
     void *scratch = malloc(scratch_bytes);
     uint16_t *fast = malloc(entries * 8), *slow = malloc(entries * 8);
-    double *ref = malloc(entries * 4 * sizeof(double));
+    uint16_t *fast_lit = lit ? malloc(entries * 8) : NULL, *slow_lit = lit ? malloc(entries * 8) : NULL;
+    double *ref = malloc(entries * 4 * sizeof(double)), *ref_lit = lit ? malloc(entries * 4 * sizeof(double)) : NULL;
     ref_tf_point_t ref_tf[VF_MAX_TF_POINTS];
     vfp_status_t status = VFP_ERR;
-    if (!scratch || !fast || !slow || !ref) {
+    if (!scratch || !fast || !slow || !ref || (lit && (!fast_lit || !slow_lit || !ref_lit))) {
         fprintf(stderr, "volfix-sim: out of memory for %ldx%ld tables\n", n, n);
         goto done;
     }
     vf_arena_t arena;
     vf_arena_init(&arena, scratch, scratch_bytes);
-    vf_status_t s1 = VF_OK, s2 = VF_OK; /* set by build_ms, which runs at least once */
-    double fast_ms = build_ms(&core_tf, (uint32_t)n, slab_q16, VF_BUILDER_INCREMENTAL, (int)repeat, &arena, fast, &s1);
-    double slow_ms = build_ms(&core_tf, (uint32_t)n, slab_q16, VF_BUILDER_BRUTEFORCE, repeat < 3 ? (int)repeat : 3,
-                              &arena, slow, &s2);
-    if (s1 != VF_OK || s2 != VF_OK) {
-        fprintf(stderr, "volfix-sim: cannot build the table: %s\n", vf_status_text(s1 != VF_OK ? s1 : s2));
+    vf_status_t s1 = VF_OK, s2 = VF_OK, s3 = VF_OK, s4 = VF_OK; /* build_ms runs at least once */
+    const int slow_repeat = repeat < 3 ? (int)repeat : 3;
+    double fast_ms = build_ms(&core_tf, (uint32_t)n, slab_q16, VF_BUILDER_INCREMENTAL, (int)repeat, &arena, fast,
+                              NULL, &s1);
+    double slow_ms = build_ms(&core_tf, (uint32_t)n, slab_q16, VF_BUILDER_BRUTEFORCE, slow_repeat, &arena, slow, NULL,
+                              &s2);
+    double fast_lit_ms = 0, slow_lit_ms = 0;
+    if (lit) { /* into other tables: the plain ones stay what vf_table_preint built */
+        uint16_t *plain = malloc(entries * 8);
+        if (!plain) {
+            fprintf(stderr, "volfix-sim: out of memory for %ldx%ld tables\n", n, n);
+            goto done;
+        }
+        fast_lit_ms = build_ms(&core_tf, (uint32_t)n, slab_q16, VF_BUILDER_INCREMENTAL, (int)repeat, &arena, plain,
+                               fast_lit, &s3);
+        slow_lit_ms = build_ms(&core_tf, (uint32_t)n, slab_q16, VF_BUILDER_BRUTEFORCE, slow_repeat, &arena, plain,
+                               slow_lit, &s4);
+        free(plain);
+    }
+    if (s1 != VF_OK || s2 != VF_OK || s3 != VF_OK || s4 != VF_OK) {
+        const vf_status_t bad = s1 != VF_OK ? s1 : s2 != VF_OK ? s2 : s3 != VF_OK ? s3 : s4;
+        fprintf(stderr, "volfix-sim: cannot build the table: %s\n", vf_status_text(bad));
         goto done;
     }
     for (uint32_t i = 0; i < count; i++)
@@ -219,15 +247,33 @@ int sim_cmd_tables(int argc, char **argv)
         goto done;
     }
     double ref_ms = vfp_now_ms() - t0;
+    if (lit && ref_lit_table(ref_tf, (int)count, (int)n, slab_q16 / 65536.0, ref_lit)) {
+        fprintf(stderr, "volfix-sim: the reference's front-weighted builder failed\n");
+        goto done;
+    }
     errors_t ef = against_double(fast, ref, entries, (int)bits), es = against_double(slow, ref, entries, (int)bits);
     errors_t eb = between(fast, slow, entries);
+    /* the reference's lit values are S_f, D_f r, g, b where its table has a, r, g, b: against_double pairs them */
+    errors_t lf = {0, 0}, ls = {0, 0};
+    if (lit) {
+        lf = against_double(fast_lit, ref_lit, entries, (int)bits);
+        ls = against_double(slow_lit, ref_lit, entries, (int)bits);
+    }
+    /* bytes of each table in the renderer: 4 values an entry, Q1.15 or 8 bits (as core/renderer.c keeps them) */
+    const size_t table_bytes = entries * 4 * (bits == 8 ? 1 : 2);
     if (json) {
         printf("{\"size\": %ld, \"preset\": \"%s\", \"slab\": %g, \"bits\": %ld, \"incremental_ms\": %.4f, "
                "\"bruteforce_ms\": %.4f, \"speedup\": %.1f, \"reference_ms\": %.2f, \"max_err_lsb\": %.3f, "
                "\"mean_err_lsb\": %.4f, \"bruteforce_max_err_lsb\": %.3f, \"bruteforce_mean_err_lsb\": %.4f, "
-               "\"incremental_vs_bruteforce_max_lsb\": %.0f}\n",
+               "\"incremental_vs_bruteforce_max_lsb\": %.0f",
                n, tf.name, slab, bits, fast_ms, slow_ms, slow_ms / fast_ms, ref_ms, ef.max, ef.mean, es.max, es.mean,
                eb.max);
+        if (lit)
+            printf(", \"lit_incremental_ms\": %.4f, \"lit_bruteforce_ms\": %.4f, \"lit_max_err_lsb\": %.3f, "
+                   "\"lit_mean_err_lsb\": %.4f, \"lit_bruteforce_max_err_lsb\": %.3f, \"table_bytes\": %zu, "
+                   "\"lit_table_bytes\": %zu",
+                   fast_lit_ms, slow_lit_ms, lf.max, lf.mean, ls.max, table_bytes, table_bytes);
+        printf("}\n");
     } else {
         printf("pre-integrated table, %s, %ldx%ld entries, slab %g voxels, errors in LSB of %ld-bit values\n",
                tf.name, n, n, slab, bits);
@@ -235,6 +281,14 @@ int sim_cmd_tables(int argc, char **argv)
         printf("  brute force O(N^3): %9.3f ms   against double: max %.3f, mean %.4f LSB\n", slow_ms, es.max, es.mean);
         printf("  incremental is %.1fx faster; the two differ by at most %.0f LSB of Q1.15\n", slow_ms / fast_ms,
                eb.max);
+        if (lit) {
+            printf("lit: with the front-weighted values D_f, S_f (%zu bytes beside the table's %zu)\n", table_bytes,
+                   table_bytes);
+            printf("  incremental O(N^2): %9.3f ms (%.1fx the plain build)   D_f, S_f against double: max %.3f, "
+                   "mean %.4f LSB\n", fast_lit_ms, fast_lit_ms / fast_ms, lf.max, lf.mean);
+            printf("  brute force O(N^3): %9.3f ms (%.1fx the plain build)   D_f, S_f against double: max %.3f, "
+                   "mean %.4f LSB\n", slow_lit_ms, slow_lit_ms / slow_ms, ls.max, ls.mean);
+        }
     }
     status = VFP_OK;
     if (out) {
@@ -249,6 +303,9 @@ done:
     free(scratch);
     free(fast);
     free(slow);
+    free(fast_lit);
+    free(slow_lit);
     free(ref);
+    free(ref_lit);
     return vfp_exit_status(status);
 }

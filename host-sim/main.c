@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "volfix.h"
 
 static const char usage[] =
     "usage: volfix-sim COMMAND [options]   (volfix-sim COMMAND --help for its options)\n"
@@ -15,7 +16,8 @@ static const char usage[] =
     "  tables    build a pre-integrated table with each builder: time, error, picture\n"
     "  ray       one ray's signal and its order 0, 1, 2 reconstructions (El Hajjar et al.): CSV, plot\n"
     "  study     the fixed-point precision study: errors, plots, report.md\n"
-    "  diff      two PNG images compared pixel by pixel\n";
+    "  diff      two PNG images compared pixel by pixel\n"
+    "volfix-sim --version prints the version.\n";
 
 /* The commands in the order the usage lists them. */
 static const struct {
@@ -33,6 +35,10 @@ int main(int argc, char **argv)
         return argc < 2 ? VFP_EXIT_ERR : VFP_EXIT_OK;
     }
     const char *cmd = argv[1];
+    if (strcmp(cmd, "--version") == 0) {
+        printf("volfix-sim %s\n", vf_version());
+        return VFP_EXIT_OK;
+    }
     for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
         if (strcmp(cmd, commands[i].name) == 0)
             return commands[i].run(argc - 2, argv + 2);

@@ -34,6 +34,9 @@ const char sim_scene_help[] =
     "  --partial-slabs      where a ray crosses a side face of the volume between two slices, composite the part\n"
     "                       of the slab inside it (default: the whole slab or nothing)\n"
     "  --threads N          threads for the table, compositing and warping (default 1)\n"
+    "Lighting (docs/algorithm.md section 7; not with --partial-slabs, where the transfer function's own shading\n"
+    "gives way):\n"
+    VFP_LIGHTING_HELP
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]\n"
     "                       for raw voxel files (--spacing also overrides a file's own)\n"
     "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N with NAME marschner-lobb,\n"
@@ -98,6 +101,7 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
 {
     memset(o, 0, sizeof *o);
     vf_params_default(&o->params);
+    vfp_lighting_opts_init(&o->lighting);
     o->azimuth = 30;
     o->elevation = 20;
     o->zoom = 1;
@@ -109,7 +113,7 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
     char err[VFP_ERR_LEN];
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = 1; /* how many arguments this option consumed after itself */
+        int takes = 1, took; /* how many arguments this option consumed after itself */
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
             return VFP_HELP_SHOWN;
@@ -282,6 +286,9 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
             if (!v || parse_doubles(v, &n, 1, 1) < 0 || !(n >= 1 && n <= 1000) || n != (int)n)
                 return bad(a, v, "a number of rounds, 1..1000");
             o->rounds = (int)n;
+        } else if ((groups & SIM_OPT_SCENE) && (took = vfp_lighting_option(&o->lighting, "volfix-sim", a, v)) != 0) {
+            if (took < 0)
+                return VFP_ERR;
         } else if (a[0] == '-' && v == NULL) {
             fprintf(stderr, "volfix-sim: %s: unknown option or missing value (see --help)\n", a);
             return VFP_ERR;
@@ -302,6 +309,16 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
     if (o->params.partial_slabs && o->params.correction == VF_CORRECTION_LUT && !o->reference) {
         fprintf(stderr, "volfix-sim: --partial-slabs goes with --correction rebuild: the core does not shorten "
                         "lut-corrected slabs (docs/algorithm.md, section 4c)\n");
+        return VFP_ERR;
+    }
+    if (vfp_lighting_check(&o->lighting, err, sizeof err)) {
+        fprintf(stderr, "volfix-sim: %s\n", err);
+        return VFP_ERR;
+    }
+    if (o->params.partial_slabs && (o->lighting.shade == 1 || o->lighting.light_count || o->lighting.have_material ||
+                                    o->lighting.gradient_hi)) {
+        fprintf(stderr, "volfix-sim: --partial-slabs does not go with lighting (--shade phong, --light, --material, "
+                        "--gradient-opacity): docs/algorithm.md, section 7\n");
         return VFP_ERR;
     }
     if (o->preset && o->tf_file) {

@@ -3,6 +3,7 @@
 #define SIM_OPTIONS_H
 
 #include "volfix.h"
+#include "io/lighting_opts.h"
 #include "io/volume.h"
 
 typedef struct sim_opts {
@@ -13,6 +14,7 @@ typedef struct sim_opts {
     const char *window;        /* --window LO,HI in data units */
     double tf_shift, tf_scale; /* --tf-move SHIFT,SCALE (vfp_tf_move; default 0,1) */
     vf_params_t params;        /* --mode --table-size */
+    vfp_lighting_opts_t lighting; /* --shade --light --material --gradient-opacity --normal-bits --shade-lookup */
     double azimuth, elevation, roll; /* --view AZ,EL[,ROLL] degrees */
     double zoom;               /* --zoom */
     uint32_t width, height;    /* --size WxH */

@@ -22,7 +22,7 @@ vf_view_t sim_view(double azimuth, double elevation, double roll, double zoom)
 vfp_status_t sim_scene_command(sim_opts_t *opts, sim_scene_t *scene, int argc, char **argv, unsigned groups,
                                const char *usage_head)
 {
-    char usage[4096], err[VFP_ERR_LEN];
+    char usage[8192], err[VFP_ERR_LEN];
     snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     vfp_status_t status = sim_parse(opts, argc, argv, SIM_OPT_SCENE | groups, usage);
     if (status == VFP_OK && (status = sim_scene_load(scene, opts, err, sizeof err)) != VFP_OK)
@@ -50,6 +50,9 @@ vfp_status_t sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size
         vfp_tf_move(&s->tf, &s->vol, s->window, o->tf_shift, o->tf_scale);
     s->npoints = vfp_tf_to_core(&s->tf, &s->vol, s->window, s->points);
     s->params = o->params;
+    /* with partial slabs the transfer function's own shading gives way (lighting does not go with them, and
+     * options that ask for it were refused by sim_parse) */
+    vfp_lighting_resolve(&o->lighting, o->params.partial_slabs ? NULL : &s->tf, &s->params, &s->lighting);
     s->view = sim_view(o->azimuth, o->elevation, o->roll, o->zoom);
     s->width = o->width;
     s->height = o->height;
@@ -74,6 +77,18 @@ void sim_image_free(vf_image_t *img)
     vfp_image_free(img);
 }
 
+vfp_status_t sim_core_lighting(const sim_scene_t *s, vf_renderer_t *core, char *err, size_t errlen)
+{
+    if (!s->params.lighting)
+        return VFP_OK;
+    vf_status_t status = vf_renderer_set_lighting(core, &s->lighting);
+    if (status != VF_OK) {
+        snprintf(err, errlen, "cannot light the frames: %s", vf_status_text(status));
+        return VFP_ERR;
+    }
+    return VFP_OK;
+}
+
 vfp_status_t sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t *factor, char *err, size_t errlen)
 {
     vfp_render_t r;
@@ -86,6 +101,8 @@ vfp_status_t sim_render_core(const sim_scene_t *s, vf_image_t *img, vf_factor_t 
         status = vfp_render_set_window(&r, s->window, err, errlen);
     if (status == VFP_OK)
         status = vfp_render_set_tf(&r, s->points, s->npoints, err, errlen);
+    if (status == VFP_OK)
+        status = sim_core_lighting(s, r.core, err, errlen);
     if (status == VFP_OK)
         status = vfp_render_frame(&r, &s->view, img, err, errlen);
     if (status == VFP_OK && factor)
@@ -178,6 +195,31 @@ static vfp_status_t double_frame_end(const sim_scene_t *s, int rendered, sim_ref
     return rendered == 0 ? VFP_OK : VFP_ERR;
 }
 
+const ref_lighting_t *sim_ref_lighting(const sim_scene_t *s, ref_lighting_t *out)
+{
+    if (!s->params.lighting)
+        return NULL;
+    const vf_lighting_t *l = &s->lighting;
+    memset(out, 0, sizeof *out);
+    out->shade = l->shade;
+    out->light_count = (int)l->light_count;
+    for (uint32_t k = 0; k < l->light_count && k < REF_MAX_LIGHTS; k++) {
+        out->light_azimuth[k] = l->lights[k].azimuth;
+        out->light_elevation[k] = l->lights[k].elevation;
+    }
+    out->ka = l->ka / 65535.0, out->kd = l->kd / 65535.0, out->ks = l->ks / 65535.0;
+    out->shininess = l->shininess;
+    out->gradient_lo = l->gradient_lo, out->gradient_hi = l->gradient_hi;
+    out->normal_bits = (int)s->params.normal_bits;
+    out->shade_lookup = s->params.shade_lookup == VF_LOOKUP_NEAREST ? REF_LOOKUP_NEAREST : REF_LOOKUP_BILINEAR;
+    out->raw = s->vol.core.voxels;
+    out->raw_type = (int)s->vol.core.type; /* vf_voxel_t and REF_VOXEL_* list the types in the same order */
+    out->exact_normals = s->ref_exact_normals;
+    out->shade_bits = s->ref_shade_bits;
+    out->lit_table_bits = s->ref_lit_table_bits;
+    return out;
+}
+
 vfp_status_t sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_factor, vf_image_t *img, char *err,
                                   size_t errlen)
 {
@@ -201,6 +243,8 @@ vfp_status_t sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_
     params.correction = s->params.correction == VF_CORRECTION_LUT ? REF_CORRECTION_LUT : REF_CORRECTION_REBUILD;
     params.partial_slabs = s->params.partial_slabs;
     params.rays = (int)s->params.rays;
+    ref_lighting_t lighting;
+    params.lighting = sim_ref_lighting(s, &lighting);
     int32_t *offsets = NULL;
     if (core_factor) {
         offsets = malloc(sizeof(int32_t) * 2 * core_factor->nk);
@@ -229,8 +273,9 @@ vfp_status_t sim_render_truth(const sim_scene_t *s, vf_image_t *img, char *err, 
     double *rgb;
     if (double_frame_begin(s, "the ground truth", &in, &rgb, img, err, errlen))
         return VFP_ERR;
-    int status = truth_render(&in.vol, in.tf, in.npoints, in.background, &in.view, (int)s->width,
-                              (int)s->height, s->threads, rgb);
+    ref_lighting_t lighting;
+    int status = truth_render_lit(&in.vol, in.tf, in.npoints, in.background, &in.view, (int)s->width,
+                                  (int)s->height, s->threads, NULL, sim_ref_lighting(s, &lighting), rgb);
     if (status)
         snprintf(err, errlen, "the ground-truth ray caster failed (status %d)", status);
     return double_frame_end(s, status, &in, rgb, img);
@@ -260,7 +305,9 @@ void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)
     char rays[32] = "";
     if (s->params.rays > 1)
         snprintf(rays, sizeof rays, " rays %u", s->params.rays);
-    snprintf(text, len, "%s %s%s%s %ux%u view %s zoom %g %s window %d,%d", base ? base + 1 : s->vol.name,
+    char lit[192];
+    vfp_lighting_describe(p, &s->lighting, lit, sizeof lit);
+    snprintf(text, len, "%s %s%s%s %ux%u view %s zoom %g %s window %d,%d%s", base ? base + 1 : s->vol.name,
              vf_mode_name(p->mode), options, rays, s->width, s->height, view, s->view.zoom_q16 / 65536.0, s->tf.name,
-             s->window.lo, s->window.hi);
+             s->window.lo, s->window.hi, lit);
 }

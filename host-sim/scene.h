@@ -19,6 +19,9 @@ typedef struct sim_scene {
     vf_tf_point_t points[VF_MAX_TF_POINTS]; /* the transfer function as the core gets it */
     uint32_t npoints;
     vf_params_t params;
+    vf_lighting_t lighting; /* section 7, for params.lighting: the options' and the transfer function's */
+    /* The precision study's knobs of the reference's lighting (ref.h, ref_lighting_t; 0: section 7 as written) */
+    int ref_exact_normals, ref_shade_bits, ref_lit_table_bits;
     vf_view_t view;
     uint32_t width, height;
     vf_format_t format;
@@ -48,6 +51,10 @@ void sim_image_free(vf_image_t *image);
 vfp_status_t sim_render_core(const sim_scene_t *scene, vf_image_t *image, vf_factor_t *factor, char *err,
                              size_t errlen);
 
+/* Light a core renderer as the scene says (after every vfp_render_set_tf: a renderer made again for longer run
+ * lists starts with the default lighting). VFP_OK, or VFP_ERR with err. */
+vfp_status_t sim_core_lighting(const sim_scene_t *scene, vf_renderer_t *core, char *err, size_t errlen);
+
 /* Render with the double reference. With core_factor (from sim_render_core), the reference checks the core's
  * slice offsets against its own and samples where the core does (ref.h explains why); without it the
  * reference works alone. Returns VFP_OK, or VFP_ERR with err (also when the factorisations disagree). */
@@ -69,9 +76,14 @@ typedef struct sim_ref_inputs {
 vfp_status_t sim_ref_inputs(const sim_scene_t *scene, sim_ref_inputs_t *in);
 void sim_ref_inputs_free(sim_ref_inputs_t *in);
 
+/* The scene's lighting as the reference and the truth take it (the core's quantised lights and material, the raw
+ * voxels), into *out; returns out, or NULL when the scene is unlit. */
+const ref_lighting_t *sim_ref_lighting(const sim_scene_t *scene, ref_lighting_t *out);
+
 /* Render with the ground-truth ray caster (host-sim/truth) from the inputs the reference gets: the windowed
- * volume, the quantised transfer-function points, view, size and background; threads from the scene. The mode
- * and table options do not apply. Returns VFP_OK, or VFP_ERR with err. */
+ * volume, the quantised transfer-function points, view, size and background, and the lighting (the lit truth of
+ * docs/algorithm.md); threads from the scene. The mode and table options do not apply. Returns VFP_OK, or
+ * VFP_ERR with err. */
 vfp_status_t sim_render_truth(const sim_scene_t *scene, vf_image_t *image, char *err, size_t errlen);
 
 /* "engine.nhdr preint1 512x512 view 30,20 ramp window 0,255": what a line of output is about. */

@@ -64,10 +64,12 @@ int study_add_scene(study_t *st, const char *label, const char *volume, const ch
     snprintf(size_text, sizeof size_text, "%ux%u", size, size);
     /* a preset name, or "file:PATH" for a transfer-function file */
     int is_file = strncmp(sc->preset, "file:", 5) == 0;
+    /* unlit: the study measures the unlit algorithm, whatever a preset's own shading (study_lit.c lights its
+     * scenes itself) */
     char *argv[] = {sc->volume, is_file ? "--tf" : "--preset", is_file ? sc->preset + 5 : sc->preset, "--size",
-                    size_text};
+                    size_text, "--shade", "none"};
     sim_opts_t o;
-    if (sim_parse(&o, 5, argv, SIM_OPT_SCENE, "")) {
+    if (sim_parse(&o, 7, argv, SIM_OPT_SCENE, "")) {
         snprintf(err, errlen, "%s: bad scene", label);
         return -1;
     }
@@ -211,6 +213,13 @@ static vfp_status_t render_core(study_t *st, int scene, const vf_params_t *param
         status = vfp_render_set_window(&r, s->window, err, errlen);
     if (status == VFP_OK)
         status = vfp_render_set_tf(&r, s->points, s->npoints, err, errlen);
+    if (status == VFP_OK && params->lighting) { /* the scene's lighting (study_lit.c's scenes) */
+        vf_status_t ls = vf_renderer_set_lighting(r.core, &s->lighting);
+        if (ls != VF_OK) {
+            snprintf(err, errlen, "cannot light the frames: %s", vf_status_text(ls));
+            status = VFP_ERR;
+        }
+    }
     double t0 = vfp_now_ms();
     if (status == VFP_OK)
         status = vfp_render_frame(&r, &s->view, &img, err, errlen);
@@ -234,7 +243,20 @@ vfp_status_t study_render_core(study_t *st, int scene, const vf_params_t *params
     return render_core(st, scene, params, rgb, NULL, err, errlen);
 }
 
-static void progress(study_t *st, const study_run_t *run)
+vfp_status_t study_render_core_memory(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb,
+                                      vf_memory_t *memory, char *err, size_t errlen)
+{
+    study_run_t run;
+    memset(&run, 0, sizeof run);
+    const int frames = st->time_frames;
+    st->time_frames = 0;
+    vfp_status_t status = render_core(st, scene, params, rgb, &run, err, errlen);
+    st->time_frames = frames;
+    *memory = run.memory;
+    return status;
+}
+
+void study_progress(study_t *st, const study_run_t *run)
 {
     const study_scene_t *sc = &st->scenes[run->scene];
     double seconds = (vfp_now_ms() - st->started_ms) / 1000;
@@ -294,7 +316,7 @@ study_run_t *study_run(study_t *st, int scene, const vf_params_t *params, const 
     else
         free(rgb);
     st->run_count++;
-    progress(st, run);
+    study_progress(st, run);
     return run;
 }
 

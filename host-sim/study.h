@@ -101,6 +101,7 @@ typedef struct study {
     int reference_count;
     int threads;           /* for truth renders */
     int quick;
+    int lighting_only;     /* --lighting-only: the lighting stages alone, and a report of them alone */
     const char *dir;
     double started_ms;
     int progress_tty;      /* rewrite one progress line (a terminal) or print one per run (a log) */
@@ -151,6 +152,19 @@ uint64_t study_instructions(study_t *st, int scene, const vf_params_t *params);
  * err. */
 vfp_status_t study_render_core(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb, char *err,
                                size_t errlen);
+
+/* The same, and the renderer's memory. */
+vfp_status_t study_render_core_memory(study_t *st, int scene, const vf_params_t *params, uint8_t *rgb,
+                                      vf_memory_t *memory, char *err, size_t errlen);
+
+/* One line of progress for a run just recorded. */
+void study_progress(study_t *st, const study_run_t *run);
+
+/* study_lit.c: the lighting stages (normal codes, shade table and lit table bits; the shade lookup in the full
+ * study) on lit scenes, Marschner-Lobb 41^3 and, in the full study, the shared volumes under data. The lit
+ * default: study_default_params with lighting. Returns VFP_OK, or VFP_ERR with err. */
+vf_params_t study_lit_params(void);
+vfp_status_t study_lit(study_t *st, const char *data, char *err, size_t errlen);
 
 /* The scene's truth image (rendered on first use). NULL with err on failure. */
 const uint8_t *study_truth(study_t *st, int scene, char *err, size_t errlen);

@@ -21,6 +21,10 @@ static vfp_status_t open_plot(const study_t *st, const char *name, FILE **d, FIL
     return *g ? VFP_OK : VFP_ERR;
 }
 
+/* What an empty panel plots (a study that ran none of its factor, as --lighting-only): gnuplot refuses a plot
+ * whose every point is undefined, and on a logarithmic axis a constant needs a range of its own. */
+#define EMPTY_PLOT "[1:2] 0 notitle lc rgb 'white'"
+
 /* Data for one line of a plot: the runs of a scene and factor, value against a measure. */
 static void write_series(FILE *f, const study_t *st, int scene, const char *factor, int truth)
 {
@@ -67,7 +71,7 @@ static vfp_status_t plot_bits(const study_t *st, char *err, size_t errlen)
                     st->scenes[which[i]].label);
         }
         if (n == 0)
-            fprintf(g, "NaN notitle");
+            fprintf(g, EMPTY_PLOT);
         fprintf(g, "\n");
     }
     fprintf(g, "unset multiplot\n");
@@ -99,7 +103,7 @@ static vfp_status_t plot_table_size(const study_t *st, char *err, size_t errlen)
                 first = 0;
             }
         }
-        fprintf(g, "%s\n", first ? "NaN notitle" : "");
+        fprintf(g, "%s\n", first ? EMPTY_PLOT : "");
     }
     fprintf(g, "unset multiplot\n");
     fclose(d);
@@ -133,9 +137,9 @@ static vfp_status_t plot_orders(const study_t *st, char *err, size_t errlen)
                "set style data histogram\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
                "set grid ytics\nset ylabel 'PSNR against the truth (dB)'\nset key top left\nset xtics rotate by -20\n"
                "set yrange [0:*]\nplot ");
-    for (int m = 0; m < STUDY_MODES; m++)
+    for (int m = 0; n && m < STUDY_MODES; m++)
         fprintf(g, "%s'orders.dat' using %d:xtic(1) title columnheader", m ? ", " : "", m + 2);
-    fprintf(g, "\n");
+    fprintf(g, "%s\n", n ? "" : EMPTY_PLOT);
     fclose(d);
     fclose(g);
     return gnuplot(st, "orders.gp", err, errlen);
@@ -164,7 +168,7 @@ static vfp_status_t plot_memory(const study_t *st, char *err, size_t errlen)
     for (int i = 0; i < n; i++)
         fprintf(g, "%s'memory.dat' index %d using 1:2 with points pt 7 title '%s'", i ? ", " : "", i,
                 st->scenes[which[i]].label);
-    fprintf(g, "%s\n", n ? "" : "NaN notitle");
+    fprintf(g, "%s\n", n ? "" : EMPTY_PLOT);
     fclose(d);
     fclose(g);
     return gnuplot(st, "memory.gp", err, errlen);
@@ -244,7 +248,7 @@ static vfp_status_t plot_rays(const study_t *st, char *err, size_t errlen)
                     lines++ ? ", " : "", block++, 7 - 2 * partial, partial ? 1 : 2, m + 1, vf_mode_name(modes[m]),
                     partial ? "partial" : "whole");
         }
-    fprintf(g, "%s\n", lines ? "" : "NaN notitle");
+    fprintf(g, "%s\n", lines ? "" : EMPTY_PLOT);
     /* right: preint1's gain over point, each table size and side-face rule */
     fprintf(g, "set title 'preint1 closer to the truth than point by'\nset ylabel 'dB'\nset key bottom right "
                "maxrows 5\nset offsets 0, 0, 0, 0\nplot ");
@@ -276,10 +280,52 @@ static vfp_status_t plot_rays(const study_t *st, char *err, size_t errlen)
     return gnuplot(st, "rays.gp", err, errlen);
 }
 
+/* One lighting stage (study_lit.c): NAME.png, PSNR against the stage's reference and, when its runs have one,
+ * against the lit truth, one line per scene. */
+static vfp_status_t plot_lit_stage(const study_t *st, const char *name, const char *title, const char *against,
+                                   const char *xlabel, char *err, size_t errlen)
+{
+    FILE *d, *g;
+    if (open_plot(st, name, &d, &g, err, errlen))
+        return VFP_ERR;
+    int which[STUDY_MAX_SCENES], n = study_scenes_with(st, name, which, STUDY_MAX_SCENES), truth = 0;
+    for (int i = 0; i < st->run_count; i++)
+        truth |= strcmp(st->runs[i].factor, name) == 0 && st->runs[i].vs_truth.pixels;
+    fprintf(g, "set terminal pngcairo size %d,450 font ',10'\nset output '%s.png'\n"
+               "set multiplot layout 1,%d title '%s'\nset grid\nset key bottom right\nset xlabel '%s'\n"
+               "set ylabel 'PSNR (dB)'\n",
+            truth ? 1200 : 700, name, truth ? 2 : 1, title, xlabel);
+    int block = 0;
+    for (int t = 0; t <= truth; t++) {
+        fprintf(g, "set title 'against %s'\nplot ", t ? "the lit truth (the algorithm, lit)" : against);
+        for (int i = 0; i < n; i++) {
+            write_series(d, st, which[i], name, t);
+            fprintf(g, "%s'%s.dat' index %d using 1:2 with linespoints title '%s'", i ? ", " : "", name, block++,
+                    st->scenes[which[i]].label);
+        }
+        fprintf(g, "%s\n", n ? "" : EMPTY_PLOT);
+    }
+    fprintf(g, "unset multiplot\n");
+    fclose(d);
+    fclose(g);
+    char script[64];
+    snprintf(script, sizeof script, "%s.gp", name);
+    return gnuplot(st, script, err, errlen);
+}
+
 vfp_status_t study_write_plots(const study_t *st, char *err, size_t errlen)
 {
-    if (plot_bits(st, err, errlen) || plot_table_size(st, err, errlen) || plot_orders(st, err, errlen) ||
-        plot_memory(st, err, errlen) || plot_peaks(st, err, errlen) || plot_rays(st, err, errlen))
+    if (!st->lighting_only &&
+        (plot_bits(st, err, errlen) || plot_table_size(st, err, errlen) || plot_orders(st, err, errlen) ||
+         plot_memory(st, err, errlen) || plot_peaks(st, err, errlen) || plot_rays(st, err, errlen)))
+        return VFP_ERR;
+    if (plot_lit_stage(st, "normal_bits", "Lit preint1: bits of the normal codes", "the reference with unquantised "
+                       "normals (codes and fixed point)", "bits of a normal code", err, errlen) ||
+        plot_lit_stage(st, "shade_bits", "Lit preint1: fraction bits of the shade table (the core keeps 14)",
+                       "the reference with an exact shade table", "fraction bits of L_d and L_s", err, errlen) ||
+        plot_lit_stage(st, "lit_table_bits", "Lit preint1: bits of the front-weighted table (D_f, S_f)",
+                       "the reference with an exact front-weighted table", "bits of a front-weighted value", err,
+                       errlen))
         return VFP_ERR;
     return VFP_OK;
 }

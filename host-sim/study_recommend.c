@@ -38,14 +38,14 @@ static const char *smallest_safe(const study_t *st, const char *factor, char *ou
 
 /* Memory a configuration needs for the microcontroller scene (boards/mps2-an386): bucky, 32^3, and a 64x64
  * image, on one thread, measured by building the renderer (run lists depend on the data: a sphere phantom stands
- * in when the shared data are not there). */
+ * in when $VOLFIX_DATA is unset or has no bucky). */
 static size_t mcu_bytes(const vf_params_t *p)
 {
-    const char *data = getenv("VOLFIX_DATA") ? getenv("VOLFIX_DATA") : "../shared/data";
+    const char *data = getenv("VOLFIX_DATA");
     char path[1024], err[VFP_ERR_LEN];
-    snprintf(path, sizeof path, "%s/bucky.nhdr", data);
+    snprintf(path, sizeof path, "%s/bucky.nhdr", data && data[0] ? data : ".");
     vfp_volume_t vol;
-    if (vfp_volume_load(&vol, path, NULL, err, sizeof err) &&
+    if ((!data || !data[0] || vfp_volume_load(&vol, path, NULL, err, sizeof err)) &&
         vfp_volume_load(&vol, "phantom:sphere:32", NULL, err, sizeof err))
         return 0;
     size_t fixed, total = 0;

@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 int check_failed;
 static char check_message[1024];
@@ -17,6 +18,22 @@ void check_fail(const char *file, int line, const char *fmt, ...)
         vsnprintf(check_message + n, sizeof check_message - (size_t)n, fmt, ap);
     va_end(ap);
     check_failed = 1;
+}
+
+const char *check_data(const char *name, char *path, size_t len)
+{
+    const char *dir = getenv("VOLFIX_DATA");
+    struct stat st;
+    if (!dir || !dir[0]) {
+        snprintf(path, len, "VOLFIX_DATA is not set: it names the folder of sample volumes with %s (make test sets it)",
+                 name);
+        return NULL;
+    }
+    snprintf(path, len, "%s/%s", dir, name);
+    if (stat(path, &st) == 0)
+        return path;
+    snprintf(path, len, "no %s in VOLFIX_DATA=%s: set VOLFIX_DATA to the folder of sample volumes", name, dir);
+    return NULL;
 }
 
 /* Runs every case, or only those named on the command line. Exit status 1 if any failed. */

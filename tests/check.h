@@ -7,6 +7,7 @@
 #define CHECK_H
 
 #include <stdio.h>
+#include <stddef.h>
 #include <stdint.h>
 
 typedef struct check_case {
@@ -33,6 +34,11 @@ static inline uint32_t check_below(uint64_t *state, uint32_t n)
 {
     return (uint32_t)((check_rand64(state) >> 33) % n);
 }
+
+/* A sample volume: NAME in the folder $VOLFIX_DATA (make test sets it; the Makefile names the default). Writes
+ * its path into path and returns path; when the variable is unset or the file is not there, writes why instead
+ * (naming VOLFIX_DATA) and returns NULL, for the test to fail with. */
+const char *check_data(const char *name, char *path, size_t len);
 
 #define CHECK_CASES(...) static const check_case_t check_cases_[] = {__VA_ARGS__}
 #define CHECK_RUN(suite) \

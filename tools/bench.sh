@@ -9,10 +9,15 @@
 # the tables, callgrind and the viewer take under a minute together. ROUNDS=1 saves about a minute.
 cd "$(dirname "$0")/.." || exit 2
 sim=${BUILD:-build}/volfix-sim
-data=${VOLFIX_DATA:-../shared/data}
+data=${VOLFIX_DATA:-}
 size=${SIZE:-512x512}
 rounds=${ROUNDS:-3}
-if [ -d "$data" ]; then volumes="$data/engine.nhdr $data/brainsmall.nhdr"; else volumes="phantom:shepp-logan:128"; fi
+if [ -n "$data" ] && [ -d "$data" ]; then
+    volumes="$data/engine.nhdr $data/brainsmall.nhdr"
+else
+    volumes="phantom:shepp-logan:128"
+    echo "== no sample volumes in VOLFIX_DATA='$data': a phantom stands in for engine and brainsmall"
+fi
 
 echo "== frame times, $size, preset ramp, 1 thread, $rounds rounds (progress on stderr)"
 for v in $volumes; do

@@ -1,9 +1,11 @@
 #!/bin/sh
 # make run: render a few images into out/ with the fixed-point core and say how far each is from the
-# double-precision reference of the same algorithm. Needs no data; uses ../shared/data when it is there.
+# double-precision reference of the same algorithm. Needs no data: the phantoms are built in; the sample volumes
+# come from the folder VOLFIX_DATA (make exports it) when it is there.
 cd "$(dirname "$0")/.." || exit 2
 sim=${BUILD:-build}/volfix-sim
-data=${VOLFIX_DATA:-../shared/data}
+data=${VOLFIX_DATA:-}
+have_data() { [ -n "$data" ] && [ -f "$data/engine.nhdr" ] && [ -f "$data/cthead.nhdr" ]; }
 mkdir -p out
 
 show() { # output name, then volfix-sim compare arguments
@@ -21,16 +23,18 @@ show() { # output name, then volfix-sim compare arguments
 echo "volfix demo: the fixed-point core renders, the double-precision reference checks every pixel"
 show out/marschner-lobb.png phantom:marschner-lobb:64 --preset sharp --view 30,20 || exit 1
 show out/shepp-logan.png phantom:shepp-logan:128 --preset ramp --view 0,-60 || exit 1
-if [ -d "$data" ]; then
+if have_data; then
     show out/engine.png "$data/engine.nhdr" --preset ramp --view 30,20 --threads 2 || exit 1
     show out/cthead.png "$data/cthead.nhdr" --preset ct-skin-bone --view 180,90 --threads 2 || exit 1
 else
-    echo "  ($data not found: the shared CT volumes are skipped)"
+    echo "  (no sample volumes in VOLFIX_DATA='$data': the CT engine and head are left out. For them, set"
+    echo "   VOLFIX_DATA to a folder of NRRD volumes such as the volfix shared data, whose README.md names each"
+    echo "   volume's public source: make run VOLFIX_DATA=DIR)"
 fi
 viewer=${BUILD:-build}/volfix
 if [ -x "$viewer" ]; then
     vol=phantom:marschner-lobb:96
-    [ -d "$data" ] && vol="$data/engine.nhdr"
+    have_data && vol="$data/engine.nhdr"
     echo "The viewer on the headless board, knobs played from boards/host-headless.script (3 s):"
     rm -rf out/frames
     "$viewer" --board boards/host-headless.board "$vol" --device out/frames --overlay | sed 's/^/  /' || exit 1

@@ -1,6 +1,9 @@
 #!/bin/sh
 # Install the Debian packages that `make run` or `make test` need, when they are missing.
-# As root it runs apt-get itself; otherwise it prints the one command to run and fails.
+# As root it runs apt-get itself; otherwise it prints what is missing and the one command that installs it, and
+# carries on: the build leaves out what it cannot build (and says so), and tests/run.sh counts every suite that
+# cannot run as skipped, which fails make test, so nothing missing passes unnoticed. An apt-get that fails is
+# reported the same way.
 # Usage: tools/deps.sh run|test|hw|fuzz|mcu|cross|peers
 set -u
 for_what=${1:-run}
@@ -35,14 +38,17 @@ if [ "$for_what" = cross ]; then
 fi
 if [ -n "$foreign" ]; then
   if [ "$(id -u)" != 0 ]; then
-    echo "volfix: apt does not know the architectures$foreign; run this once, then try again:" >&2
-    echo "volfix:   sudo sh -c '$(for a in $foreign; do printf 'dpkg --add-architecture %s && ' "$a"; done)apt-get update'" >&2
-    exit 1
+    echo "volfix: apt does not know the architectures$foreign, which the cross builds' zlib and libpng come from;" >&2
+    add=$(for a in $foreign; do printf 'dpkg --add-architecture %s && ' "$a"; done)
+    echo "volfix: to add them:  sudo sh -c '${add}apt-get update'" >&2
+  else
+    echo "volfix: adding the architectures$foreign to apt (for the cross builds' zlib and libpng)"
+    for arch in $foreign; do
+      dpkg --add-architecture "$arch" || echo "volfix: dpkg --add-architecture $arch failed" >&2
+    done
+    apt-get update -q >/tmp/volfix-apt.log 2>&1 ||
+      { tail -n 20 /tmp/volfix-apt.log >&2; echo "volfix: apt-get update failed (log: /tmp/volfix-apt.log)" >&2; }
   fi
-  echo "volfix: adding the architectures$foreign to apt (for the cross builds' zlib and libpng)"
-  for arch in $foreign; do dpkg --add-architecture "$arch" || exit 1; done
-  apt-get update -q >/tmp/volfix-apt.log 2>&1 ||
-    { tail -n 20 /tmp/volfix-apt.log >&2; echo "volfix: apt-get update failed (log: /tmp/volfix-apt.log)" >&2; exit 1; }
 fi
 
 missing=""
@@ -57,8 +63,9 @@ done
 
 if [ "$(id -u)" != 0 ]; then
   echo "volfix: missing packages:$missing" >&2
-  echo "volfix: run this once, then try again:  sudo apt-get install -y$missing" >&2
-  exit 1
+  echo "volfix: to install them:  sudo apt-get install -y --no-install-recommends$missing" >&2
+  echo "volfix: carrying on without them: what needs them is left out, and the tests that need them are skipped" >&2
+  exit 0
 fi
 echo "volfix: installing$missing"
 export DEBIAN_FRONTEND=noninteractive
@@ -67,4 +74,5 @@ export DEBIAN_FRONTEND=noninteractive
 apt-get install -y -q --no-install-recommends $missing >/tmp/volfix-apt.log 2>&1 ||
   { apt-get update -q >>/tmp/volfix-apt.log 2>&1 &&
     apt-get install -y -q --no-install-recommends $missing >>/tmp/volfix-apt.log 2>&1; } ||
-  { tail -n 20 /tmp/volfix-apt.log >&2; echo "volfix: apt-get install failed (log: /tmp/volfix-apt.log)" >&2; exit 1; }
+  { tail -n 20 /tmp/volfix-apt.log >&2; echo "volfix: apt-get install failed (log: /tmp/volfix-apt.log); carrying on" \
+      "without$missing: what needs them is left out or skipped" >&2; }

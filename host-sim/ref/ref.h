@@ -5,8 +5,9 @@
  * image and the core's is the core's fixed-point error alone. It skips nothing (no run-length encoding, no skip
  * links), builds the pre-integrated table by brute force, and keeps every intermediate value in double. The
  * only quantisations are the ones the spec imposes on both implementations: the 8-bit window, the table's
- * nearest-entry lookup, the 2^-16 grid of the slice offsets and, when asked for, 8-bit tables (section 4b) and
- * partial slabs' side-face crossings and face scalars (section 4c).
+ * nearest-entry lookup, the 2^-16 grid of the slice offsets and, when asked for, 8-bit tables (section 4b),
+ * partial slabs' side-face crossings and face scalars (section 4c) and lighting's normal codes and 8-bit gradient
+ * magnitudes (section 7, computed here from its integer definition).
  * Callers hand the reference the quantised inputs the core sees (spacing q / 65536, zoom q / 65536, TF scalar
  * q / 256, colours q / 65535).
  *
@@ -16,6 +17,8 @@
  *   ref_factor.c   section 3: rotation, principal axis, shears, slice offsets, slab length, warp map
  *   ref_options.c  section 4b: bilinear table lookup, 8-bit tables, the lut slab-length correction
  *   ref_render.c   sections 4, 4b, 4c and 5: compositing into the intermediate image, the warp, the whole frame
+ *   ref_normals.c  section 7: gradients, normal codes and 8-bit magnitudes of the voxels as stored
+ *   ref_shade.c    section 7: lights, the shade table, a voxel's shade, lit segments
  *   ref_order2.c   section 8: order 2 (preint2), its table and its frames
  * Every function that returns int (but ref_table_index) returns 0, or -1 on an argument outside the spec's ranges
  * or when out of memory.
@@ -48,6 +51,8 @@ typedef enum ref_lookup { REF_LOOKUP_NEAREST = 0, REF_LOOKUP_BILINEAR, REF_LOOKU
 /* Section 4b. Slab length: tables built for the view's d, or built for d0 = 1 and every segment corrected. */
 typedef enum ref_correction { REF_CORRECTION_REBUILD = 0, REF_CORRECTION_LUT } ref_correction_t;
 
+typedef struct ref_lighting ref_lighting_t; /* section 7, below */
+
 typedef struct ref_params {
     ref_mode_t mode;
     int table_size;       /* N, REF_MIN_TABLE..REF_MAX_TABLE */
@@ -72,6 +77,9 @@ typedef struct ref_params {
     /* Section 4b. Rays R per voxel column along each intermediate axis, 1, 2, 4, 8 or 16 (0 means 1): the
      * intermediate image has R x R pixels per voxel and the warp reads it at (R u, R v). */
     int rays;
+    /* Section 7. NULL: unlit (sections 1 to 6). Else every segment is lit as section 7 says; with partial slabs
+     * ref_render refuses it (-1), as the core does. */
+    const ref_lighting_t *lighting;
     /* Section 8. preint2's 3D table, N2 entries a side (REF_MIN_TABLE2..REF_MAX_TABLE2; 0 means 64); the lookup is
      * nearest or trilinear (the last slab of an odd count then bilinear); partial slabs are not part of preint2. */
     int table2_size;
@@ -138,6 +146,15 @@ int ref_point_table(const ref_tf_point_t *tf, int npoints, int N, double d, doub
 /* Pre-integrated table for slab length d, brute force O(N^3): out[4 (front N + back) + 0..3] = a, r, g, b. */
 int ref_preint_table(const ref_tf_point_t *tf, int npoints, int N, double d, double *out);
 
+/* Section 7's front-weighted table for slab length d, brute force: out[4 (front N + back) + 0..3] = S_f, D_f r, g,
+ * b (the layout of the pre-integrated table, S_f where it has a, so that lookups and corrections treat both
+ * alike). */
+int ref_lit_table(const ref_tf_point_t *tf, int npoints, int N, double d, double *out);
+
+/* t(x) = 1 / x - exp(-x) / (1 - exp(-x)), t(0) = 1/2: the mean depth, from its front face, of the light a uniform
+ * piece of optical depth x sends out (section 7). */
+double ref_mean_depth(double x);
+
 /* The nearest entry idx(s) = round(s (N - 1) / 255) of a real-valued scalar s in [0, 255]. */
 int ref_table_index(double s, int N);
 
@@ -168,6 +185,9 @@ int ref_lut_init(ref_lut_t *lut, double rho);
 /* seg = (a, C_r, C_g, C_b) -> (F(a), C G(a)), F and G linear between the knots (a clamped to [0, 1]). */
 void ref_lut_correct(const ref_lut_t *lut, double seg[4]);
 
+/* The same for a lit slab: seg as above, and the four front-weighted values lit (S_f, D_f) times G(a) too. */
+void ref_lut_correct_lit(const ref_lut_t *lut, double seg[4], double lit[4]);
+
 /* ---- ref_factor.c -------------------------------------------------------------------------------------- */
 
 /* sin and cos of an angle in binary angle units (exact 0 and +-1 at multiples of a quarter turn). */
@@ -190,6 +210,90 @@ void ref_factor_offset(const ref_factor_t *f, int k, double *ou, double *ov);
 
 /* The intermediate point (u, v) that final pixel (px, py) sees (section 3, "Warp"). */
 void ref_factor_warp(const ref_factor_t *f, double px, double py, double *u, double *v);
+
+/* ---- ref_normals.c (section 7) ----------------------------------------------------------------------- */
+
+#define REF_MAX_LIGHTS 2
+
+/* How frames are lit. The normals come from the volume as stored (raw, before the window): raw and raw_type
+ * describe it (x fastest, native byte order, the dims and spacing of the ref_volume_t it goes with). */
+struct ref_lighting {
+    int shade;                  /* 1: Blinn-Phong; 0: unlit colours (the gradient opacity still applies) */
+    int light_count;            /* 1..REF_MAX_LIGHTS white directional lights */
+    int32_t light_azimuth[REF_MAX_LIGHTS], light_elevation[REF_MAX_LIGHTS]; /* BAU, relative to the viewer */
+    double ka, kd, ks;          /* [0, 1] */
+    int shininess;              /* 1..255 */
+    int gradient_lo, gradient_hi; /* opacity ramp in 8-bit magnitudes, 0 <= lo < hi <= 255; 0, 0: none */
+    int normal_bits;            /* 8, 10, 12, 14 or 16 */
+    ref_lookup_t shade_lookup;  /* a sample's shade: its nearest voxel's, or its four voxels' interpolated */
+    const void *raw;
+    int raw_type;               /* REF_VOXEL_* */
+    /* For the precision study, not in section 7 (0: as section 7 says). exact_normals: every voxel's normal is
+     * its gradient G / |G| in double (G_a = D_a min(sp) / (c_a sp_a), no q rounding, no code), the codes' error
+     * taken away. shade_bits: the shade table's L_d and L_s rounded to that many fraction bits (1..30).
+     * lit_table_bits: the front-weighted table's values rounded as the table bits of section 4b do, to 2..16 bits,
+     * the plain table left as it is. */
+    int exact_normals;
+    int shade_bits;
+    int lit_table_bits;
+};
+
+/* Levels a side of the octahedron, L = 2^(bits / 2) - 1; codes 0 .. L^2 - 1 are normals, L^2 is none. */
+int ref_normal_levels(int normal_bits);
+
+/* Section 7's integer gradient of voxel (x, y, z): G_a = D_a q_a(c_a), from the raw voxels. Also, when gd is
+ * not NULL, the same gradient in double without q's rounding, D_a min(sp) / (c_a sp_a) (sp the spacings as
+ * given), which is G_a / 2^14 exactly up to that rounding. */
+void ref_gradient(const ref_volume_t *vol, const void *raw, int raw_type, int x, int y, int z, int64_t G[3],
+                  double gd[3]);
+
+/* The code of an integer gradient (the octahedral map, rounded exactly as section 7 says). */
+int ref_normal_code(const int64_t G[3], int levels);
+
+/* A code's unit normal in double (world axes); (0, 0, 0) for the code L^2. */
+void ref_normal_decode(int code, int levels, double n[3]);
+
+/* M of section 7: the largest floor(|G|) over the volume (0 when it is flat), or -1 on bad arguments. */
+int64_t ref_gradient_most(const ref_volume_t *vol, const void *raw, int raw_type);
+
+/* Every voxel's code (levels from normal_bits) and 8-bit gradient magnitude gm, object order (x fastest).
+ * codes may be NULL (magnitudes only). Returns 0, or -1 on bad arguments or out of memory. */
+int ref_normals(const ref_volume_t *vol, const void *raw, int raw_type, int normal_bits, int32_t *codes,
+                uint8_t *magnitudes);
+
+/* ---- ref_shade.c (section 7) -------------------------------------------------------------------------- */
+
+/* A shade: diffuse light L_d, specular light L_s and the gradient-opacity factor g. */
+typedef struct ref_shade {
+    double d, s, g;
+} ref_shade_t;
+
+/* The lights of a frame with rotation R (section 3, world -> eye): towards each light and its half vector in
+ * eye axes, and the material. */
+typedef struct ref_lights {
+    const ref_lighting_t *lighting;
+    double R[3][3];
+    double L[REF_MAX_LIGHTS][3], H[REF_MAX_LIGHTS][3];
+} ref_lights_t;
+
+int ref_lights_init(ref_lights_t *lights, const ref_lighting_t *lighting, const double R[3][3]);
+
+/* L_d and L_s of a world normal n (unit, or (0, 0, 0): no normal, ambient only), two-sided. Rounded to
+ * lighting->shade_bits fraction bits when that is set; (1, 0) when lighting->shade is 0. */
+void ref_shade_normal(const ref_lights_t *lights, const double n[3], double *ld, double *ls);
+
+/* The gradient-opacity factor of a magnitude in 8-bit units: clamp((gm - lo) / (hi - lo), 0, 1), 1 without a
+ * ramp (the truth gives it magnitudes between the levels). */
+double ref_gradient_factor(const ref_lighting_t *lighting, double gm);
+
+/* Section 7's lit segment of order 0: seg = (a, C_r, C_g, C_b) -> C' = min(L_d C + L_s a, a), then a and C' times
+ * g. */
+void ref_light_point(double seg[4], ref_shade_t shade);
+
+/* Section 7's lit slab: seg = (a, C) of the plain table and lit = (S_f, D_f r, g, b) of the front-weighted one,
+ * looked up and corrected alike; C' = L_db C + (L_df - L_db) D_f + L_sb a + (L_sf - L_sb) S_f clamped to [0, a],
+ * then a and C' times (g_f + g_b) / 2. */
+void ref_light_slab(double seg[4], const double lit[4], ref_shade_t front, ref_shade_t back);
 
 /* ---- ref_render.c -------------------------------------------------------------------------------------- */
 
@@ -219,6 +323,13 @@ int ref_rays_size(const ref_factor_t *f, int rays, int *w, int *h);
 int ref_composite_rays(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
                        const double *table, const ref_lut_t *lut, int partial_slabs, int rays, double *inter);
 
+/* The same, lit (section 7): lighting says how, with the frame's rotation f->R; lit_table is preint1's
+ * front-weighted table (N x N x 4 as ref_lit_table, built for the length and rounded to the bits of table), NULL
+ * for the other modes. Partial slabs are not lit: -1. */
+int ref_composite_lit(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
+                      const double *table, const double *lit_table, const ref_lut_t *lut, int rays,
+                      const ref_lighting_t *lighting, double *inter);
+
 /* Resample the intermediate image bilinearly (outside: transparent) onto the final image:
  * rgb[3 (py out_w + px) + c] = C + (1 - A) background[c]. */
 void ref_warp(const ref_factor_t *f, const double *inter, const double background[3], double *rgb);
@@ -247,12 +358,19 @@ void ref_order2_ends(int N, int N2, int f, int m, int b, int end[REF_ORDER2_PIEC
 void ref_lookup_order2(const double *table2, int N2, ref_lookup_t lookup, double sf, double sm, double sb,
                        double out[4]);
 
+/* Section 8's lighting values of the order-2 table for slabs of 2d, from the pieces of section 7's front-weighted
+ * table (ref_lit_table) for 2d / K: out[8 ((f N2 + m) N2 + b) + 0..7] = S_f', W_f r, g, b, S_b', W_b r, g, b (the
+ * layout of two entries of the plain table, the specular weight where it has a). */
+int ref_order2_lit_table(const ref_tf_point_t *tf, int npoints, int N, int N2, double d, double *out);
+
 /* Composite preint2's slabs (section 8) into the R-ray intermediate image (as ref_composite_rays): table2 the order-2
  * table (N2), table the 2D table (N) for the last slab of an odd count, both as given (built for the slab length,
- * table bits applied); lut NULL or the correction of every segment. */
+ * table bits applied); lut NULL or the correction of every segment. Lit when lighting is not NULL: lit2 the
+ * order-2 table's lighting values (ref_order2_lit_table) and lit the 2D table's front-weighted ones (ref_lit_table),
+ * both as given. */
 int ref_composite_order2(const ref_volume_t *vol, const ref_factor_t *f, ref_lookup_t lookup, int N,
                          const double *table, int N2, const double *table2, const ref_lut_t *lut, int rays,
-                         double *inter);
+                         const ref_lighting_t *lighting, const double *lit, const double *lit2, double *inter);
 
 /* What ref_render does for preint2: the tables for d (rebuild: the 2D table for d, the 3D one for slabs of 2d) or
  * d0 (lut, corrected for rho = d / d0), table bits, composite, warp. */
@@ -267,5 +385,13 @@ uint8_t *ref_standard_slices(const ref_volume_t *vol, const ref_factor_t *f);
 double ref_slice_sample(const uint8_t *slice, int ni, double x, double y);
 /* Front to back: pix R, G, B, A; seg a, r, g, b. */
 void ref_composite_segment(double *pix, const double *seg);
+/* A frame's shading (section 7, as the lit modes have it): its lights, the voxels' codes and magnitudes, the shade
+ * of every code; the shades of standard slice k's voxels into slot which (0..2); a sample's shade in a slot's slice
+ * at the inside position (x, y). ref_shading_new returns NULL on bad lighting or when out of memory. */
+typedef struct ref_shading ref_shading_t;
+ref_shading_t *ref_shading_new(const ref_volume_t *vol, const ref_factor_t *f, const ref_lighting_t *lighting);
+void ref_shading_free(ref_shading_t *shading);
+void ref_shading_slice(ref_shading_t *shading, const ref_volume_t *vol, const ref_factor_t *f, int k, int which);
+ref_shade_t ref_shading_sample(const ref_shading_t *shading, int which, int ni, double x, double y);
 
 #endif /* REF_H */

@@ -83,3 +83,14 @@ void ref_lut_correct(const ref_lut_t *lut, double seg[4])
     for (int c = 1; c < 4; c++)
         seg[c] *= G;
 }
+
+void ref_lut_correct_lit(const ref_lut_t *lut, double seg[4], double lit[4])
+{
+    const double a = seg[0] < 0 ? 0 : seg[0] > 1 ? 1 : seg[0], t = a * REF_LUT_KNOTS;
+    int k = (int)floor(t);
+    k = k > REF_LUT_KNOTS - 1 ? REF_LUT_KNOTS - 1 : k;
+    const double G = lut->G[k] + (t - k) * (lut->G[k + 1] - lut->G[k]);
+    ref_lut_correct(lut, seg);
+    for (int c = 0; c < 4; c++)
+        lit[c] *= G; /* S_f and D_f scale as the colour does */
+}

@@ -1,4 +1,5 @@
-/* ref_render.c: compositing into the intermediate image, the warp, and the whole frame (sections 4, 4b, 4c, 5). */
+/* ref_render.c: compositing into the intermediate image, lit or not, the warp, and the whole frame (sections 4, 4b,
+ * 4c, 5 and 7). */
 #include "ref/ref.h"
 
 #include <math.h>
@@ -61,6 +62,129 @@ static void classify_slice(const uint8_t *slice, size_t count, int N, const doub
         const double *e = table + 4 * (size_t)ref_table_index(slice[n], N);
         for (int c = 0; c < 4; c++)
             cls[4 * n + c] = e[c];
+    }
+}
+
+/* Section 7 for one frame: the lights, every voxel's code (NULL with exact normals) and 8-bit magnitude in
+ * object order, the shade of every code, and the shades of the voxels of three slices (the front and back of a
+ * slab; order 0 uses the first; order 2's slab, in ref_order2.c, all three). */
+typedef struct shading {
+    const ref_lighting_t *l;
+    ref_lights_t lights;
+    int levels;
+    int32_t *codes;
+    uint8_t *magnitudes;
+    double *table;         /* L_d, L_s of each code, L^2 + 1 codes */
+    ref_shade_t *slice[3]; /* n_i n_j shades each */
+} shading_t;
+
+static void shading_free(shading_t *sh)
+{
+    free(sh->codes);
+    free(sh->magnitudes);
+    free(sh->table);
+    free(sh->slice[0]);
+    free(sh->slice[1]);
+    free(sh->slice[2]);
+}
+
+static int shading_init(shading_t *sh, const ref_volume_t *vol, const ref_factor_t *f, const ref_lighting_t *l)
+{
+    *sh = (shading_t){0};
+    sh->l = l;
+    if (!l->raw || l->normal_bits < 8 || l->normal_bits > 16 || l->normal_bits % 2 ||
+        (l->shade_lookup != REF_LOOKUP_NEAREST && l->shade_lookup != REF_LOOKUP_BILINEAR) || l->shade_bits < 0 ||
+        l->shade_bits > 30 || (l->lit_table_bits && (l->lit_table_bits < 2 || l->lit_table_bits > 16)) ||
+        ref_lights_init(&sh->lights, l, f->R))
+        return -1;
+    sh->levels = ref_normal_levels(l->normal_bits);
+    const size_t voxels = (size_t)vol->dims[0] * (size_t)vol->dims[1] * (size_t)vol->dims[2];
+    const size_t codes = (size_t)sh->levels * (size_t)sh->levels + 1, slice = (size_t)f->ni * (size_t)f->nj;
+    sh->magnitudes = malloc(voxels);
+    sh->codes = l->exact_normals ? NULL : malloc(sizeof(int32_t) * voxels);
+    sh->table = l->exact_normals ? NULL : malloc(sizeof(double) * 2 * codes);
+    sh->slice[0] = malloc(sizeof(ref_shade_t) * slice);
+    sh->slice[1] = malloc(sizeof(ref_shade_t) * slice);
+    sh->slice[2] = malloc(sizeof(ref_shade_t) * slice);
+    if (!sh->magnitudes || (!l->exact_normals && (!sh->codes || !sh->table)) || !sh->slice[0] || !sh->slice[1] ||
+        !sh->slice[2] ||
+        ref_normals(vol, l->raw, l->raw_type, l->normal_bits, sh->codes, sh->magnitudes)) {
+        shading_free(sh);
+        return -1;
+    }
+    for (size_t c = 0; sh->table && c < codes; c++) {
+        double n[3];
+        ref_normal_decode((int)c, sh->levels, n);
+        ref_shade_normal(&sh->lights, n, &sh->table[2 * c], &sh->table[2 * c + 1]);
+    }
+    return 0;
+}
+
+/* The shades of standard slice k's voxels into sh->slice[which], (j, i) order as standard_slices. */
+static void shade_slice(shading_t *sh, const ref_volume_t *vol, const ref_factor_t *f, int k, int which)
+{
+    const size_t stride[3] = {1, (size_t)vol->dims[0], (size_t)vol->dims[0] * (size_t)vol->dims[1]};
+    const int kobj = f->k_flip ? f->nk - 1 - k : k;
+    ref_shade_t *out = sh->slice[which];
+    for (int j = 0; j < f->nj; j++)
+        for (int i = 0; i < f->ni; i++) {
+            int p[3];
+            p[f->i_axis] = i, p[f->j_axis] = j, p[f->k_axis] = kobj;
+            const size_t at = (size_t)p[0] * stride[0] + (size_t)p[1] * stride[1] + (size_t)p[2] * stride[2];
+            ref_shade_t *o = &out[(size_t)j * (size_t)f->ni + (size_t)i];
+            if (sh->codes) {
+                o->d = sh->table[2 * (size_t)sh->codes[at]];
+                o->s = sh->table[2 * (size_t)sh->codes[at] + 1];
+            } else { /* the study's unquantised normals */
+                int64_t G[3];
+                double g[3], n[3] = {0, 0, 0};
+                ref_gradient(vol, sh->l->raw, sh->l->raw_type, p[0], p[1], p[2], G, g);
+                const double len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+                for (int a = 0; len > 0 && a < 3; a++)
+                    n[a] = g[a] / len;
+                ref_shade_normal(&sh->lights, n, &o->d, &o->s);
+            }
+            o->g = ref_gradient_factor(sh->l, sh->magnitudes[at]);
+        }
+}
+
+/* The shade of a slice sample at the inside position (x, y): its nearest voxel's (floor(x + 1/2), floor(y + 1/2)),
+ * or the four voxels' interpolated with the sample's bilinear weights (a neighbour of weight 0 is not read). */
+static ref_shade_t sample_shade(const shading_t *sh, int which, int ni, double x, double y)
+{
+    const ref_shade_t *s = sh->slice[which];
+    if (sh->l->shade_lookup == REF_LOOKUP_NEAREST)
+        return s[(size_t)floor(y + 0.5) * (size_t)ni + (size_t)floor(x + 0.5)];
+    const double x0 = floor(x), y0 = floor(y), fx = x - x0, fy = y - y0;
+    const ref_shade_t *p = s + (size_t)y0 * (size_t)ni + (size_t)x0;
+    ref_shade_t out = {0, 0, 0};
+    for (int n = 0; n < 4; n++) {
+        const double w = ((n & 1) ? fx : 1 - fx) * ((n >> 1) ? fy : 1 - fy);
+        if (w == 0)
+            continue;
+        const ref_shade_t *v = p + (n & 1) + ((n >> 1) ? (size_t)ni : 0);
+        out.d += w * v->d, out.s += w * v->s, out.g += w * v->g;
+    }
+    return out;
+}
+
+/* Preclass, lit: each of the four voxels' classified entries lit with its own shade, then interpolated as
+ * sample_entries does. */
+static void sample_entries_lit(const double *cls, const shading_t *sh, int ni, double x, double y, double out[4])
+{
+    const double x0 = floor(x), y0 = floor(y), fx = x - x0, fy = y - y0;
+    const size_t at = (size_t)y0 * (size_t)ni + (size_t)x0;
+    for (int c = 0; c < 4; c++)
+        out[c] = 0;
+    for (int n = 0; n < 4; n++) {
+        const double w = ((n & 1) ? fx : 1 - fx) * ((n >> 1) ? fy : 1 - fy);
+        if (w == 0)
+            continue;
+        const size_t v = at + (n & 1) + ((n >> 1) ? (size_t)ni : 0);
+        double e[4] = {cls[4 * v], cls[4 * v + 1], cls[4 * v + 2], cls[4 * v + 3]};
+        ref_light_point(e, sh->slice[0][v]);
+        for (int c = 0; c < 4; c++)
+            out[c] += w * e[c];
     }
 }
 
@@ -225,14 +349,38 @@ int ref_composite_sides(const ref_volume_t *vol, const ref_factor_t *f, ref_mode
     return ref_composite_rays(vol, f, mode, lookup, N, table, lut, partial_slabs, 1, inter);
 }
 
-/* Pixel (U, V) is the ray through intermediate point (u, v) = (U / R, V / R), exact in double (R divides 2^16, so
- * u - ou_k stays on the 2^-16 grid and every sample stays exact). */
+static int composite_all(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup,
+                         int N, const double *table, const double *lit_table, const ref_lut_t *lut, int partial_slabs,
+                         int rays, const ref_lighting_t *lighting, double *inter);
+
 int ref_composite_rays(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
                        const double *table, const ref_lut_t *lut, int partial_slabs, int rays, double *inter)
 {
+    return composite_all(vol, f, mode, lookup, N, table, NULL, lut, partial_slabs, rays, NULL, inter);
+}
+
+int ref_composite_lit(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup, int N,
+                      const double *table, const double *lit_table, const ref_lut_t *lut, int rays,
+                      const ref_lighting_t *lighting, double *inter)
+{
+    if (!lighting || (mode == REF_MODE_PREINT1 && !lit_table))
+        return -1;
+    return composite_all(vol, f, mode, lookup, N, table, lit_table, lut, 0, rays, lighting, inter);
+}
+
+/* Pixel (U, V) is the ray through intermediate point (u, v) = (U / R, V / R), exact in double (R divides 2^16, so
+ * u - ou_k stays on the 2^-16 grid and every sample stays exact). Lit when lighting is not NULL (then without
+ * partial slabs). */
+static int composite_all(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_t mode, ref_lookup_t lookup,
+                         int N, const double *table, const double *lit_table, const ref_lut_t *lut, int partial_slabs,
+                         int rays, const ref_lighting_t *lighting, double *inter)
+{
     int W, H;
     if (!vol || !vol->scalars || !f || !table || !inter || N < REF_MIN_TABLE || N > REF_MAX_TABLE ||
-        !mode_valid(mode) || !lookup_valid(lookup) || ref_rays_size(f, rays, &W, &H))
+        !mode_valid(mode) || !lookup_valid(lookup) || ref_rays_size(f, rays, &W, &H) || (lighting && partial_slabs))
+        return -1;
+    shading_t sh = {0};
+    if (lighting && shading_init(&sh, vol, f, lighting))
         return -1;
     uint8_t *std = standard_slices(vol, f);
     size_t slice_size = (size_t)f->ni * (size_t)f->nj;
@@ -240,6 +388,7 @@ int ref_composite_rays(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_
     if (!std || (mode == REF_MODE_PRECLASS && !cls)) {
         free(std);
         free(cls);
+        shading_free(&sh);
         return -1;
     }
     for (size_t n = 0; n < 4 * (size_t)W * (size_t)H; n++)
@@ -259,6 +408,8 @@ int ref_composite_rays(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_
             const uint8_t *slice = std + (size_t)k * slice_size;
             if (cls)
                 classify_slice(slice, slice_size, N, table, cls);
+            if (lighting)
+                shade_slice(&sh, vol, f, k, 0);
             for (int V = v_lo; V <= v_hi; V++) {
                 for (int U = u_lo; U <= u_hi; U++) {
                     double *pix = inter + 4 * ((size_t)V * (size_t)W + (size_t)U), seg[4];
@@ -268,12 +419,17 @@ int ref_composite_rays(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_
                     double rho = partial_slabs ? order0_length(f, k, u, v, ou3, ov3) : 1;
                     if (!(rho > 0))
                         continue;
-                    if (cls)
-                        sample_entries(cls, f->ni, u - ou3[1], v - ov3[1], seg);
+                    const double x = u - ou3[1], y = v - ov3[1];
+                    if (cls && lighting)
+                        sample_entries_lit(cls, &sh, f->ni, x, y, seg); /* each voxel lit, then interpolated */
+                    else if (cls)
+                        sample_entries(cls, f->ni, x, y, seg);
                     else
-                        ref_lookup_point(table, N, lookup, sample(slice, f->ni, u - ou3[1], v - ov3[1]), seg);
+                        ref_lookup_point(table, N, lookup, sample(slice, f->ni, x, y), seg);
                     if (lut)
                         ref_lut_correct(lut, seg); /* after the lookup (and the table bits, applied to the table) */
+                    if (lighting && !cls)
+                        ref_light_point(seg, sample_shade(&sh, 0, f->ni, x, y));
                     shorten(seg, rho);
                     composite(pix, seg);
                 }
@@ -290,6 +446,15 @@ int ref_composite_rays(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_
             union_range(ou[0], ou[1], f->ni, rays, W, &u_lo, &u_hi);
             union_range(ov[0], ov[1], f->nj, rays, H, &v_lo, &v_hi);
             const uint8_t *front = std + (size_t)k * slice_size, *back = front + slice_size;
+            if (lighting) { /* the front's shades are the last slab's back's */
+                if (k == 0)
+                    shade_slice(&sh, vol, f, 0, 0);
+                else {
+                    ref_shade_t *t = sh.slice[0];
+                    sh.slice[0] = sh.slice[1], sh.slice[1] = t;
+                }
+                shade_slice(&sh, vol, f, k + 1, 1);
+            }
             for (int V = v_lo; V <= v_hi; V++) {
                 for (int U = u_lo; U <= u_hi; U++) {
                     double *pix = inter + 4 * ((size_t)V * (size_t)W + (size_t)U), seg[4], lo = 0, hi = 1;
@@ -311,8 +476,16 @@ int ref_composite_rays(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_
                     double sb = in_b ? sample(back, f->ni, u - ou[1], v - ov[1])
                                      : face_scalar(f, front, back, ou, ov, u, v, hi);
                     ref_lookup_preint(table, N, lookup, sf, sb, seg);
-                    if (lut)
+                    if (lighting) {
+                        double lit[4];
+                        ref_lookup_preint(lit_table, N, lookup, sf, sb, lit);
+                        if (lut)
+                            ref_lut_correct_lit(lut, seg, lit);
+                        ref_light_slab(seg, lit, sample_shade(&sh, 0, f->ni, u - ou[0], v - ov[0]),
+                                       sample_shade(&sh, 1, f->ni, u - ou[1], v - ov[1]));
+                    } else if (lut) {
                         ref_lut_correct(lut, seg);
+                    }
                     shorten(seg, rho);
                     composite(pix, seg);
                 }
@@ -321,6 +494,7 @@ int ref_composite_rays(const ref_volume_t *vol, const ref_factor_t *f, ref_mode_
     }
     free(std);
     free(cls);
+    shading_free(&sh);
     return 0;
 }
 
@@ -387,25 +561,42 @@ int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, c
     size_t N = (size_t)p->table_size;
     size_t entries = p->mode == REF_MODE_PREINT1 ? N * N : N; /* preclass classifies with the point table */
     int lut_on = p->correction == REF_CORRECTION_LUT;
+    const ref_lighting_t *lighting = p->lighting;
+    if (lighting && p->partial_slabs)
+        return -1; /* section 7: lighting with partial slabs is not supported */
+    int lit_on = lighting && p->mode == REF_MODE_PREINT1; /* the front-weighted table */
     double d = lut_on ? REF_LUT_D0 : f.slab; /* lut: tables for d0, every segment corrected for rho = d / d0 */
     double *table = malloc(4 * entries * sizeof(double));
+    double *lit_table = lit_on ? malloc(4 * entries * sizeof(double)) : NULL;
     ref_rays_size(&f, rays, &W, &H);
     double *inter = malloc(4 * (size_t)W * (size_t)H * sizeof(double));
     ref_lut_t *lut = lut_on ? malloc(sizeof *lut) : NULL;
     int rc = -1;
-    if (table && inter && (lut || !lut_on)) {
+    if (table && inter && (lut || !lut_on) && (lit_table || !lit_on)) {
         rc = p->mode == REF_MODE_PREINT1 ? ref_preint_table(tf, npoints, p->table_size, d, table)
                                          : ref_point_table(tf, npoints, p->table_size, d, table);
         if (rc == 0)
             rc = ref_table_bits(table, 4 * entries, p->table_bits);
+        if (rc == 0 && lit_on)
+            rc = ref_lit_table(tf, npoints, p->table_size, d, lit_table);
+        if (rc == 0 && lit_on) /* in the plain table's format (section 7), and for the study maybe fewer bits */
+            rc = ref_table_bits(lit_table, 4 * entries, p->table_bits);
+        if (rc == 0 && lit_on && lighting->lit_table_bits) {
+            const double levels = ldexp(1.0, lighting->lit_table_bits) - 1;
+            for (size_t n = 0; n < 4 * entries; n++)
+                lit_table[n] = floor(levels * lit_table[n] + 0.5) / levels;
+        }
         if (rc == 0 && lut)
             rc = ref_lut_init(lut, f.slab / REF_LUT_D0);
         if (rc == 0)
-            rc = ref_composite_rays(vol, &f, p->mode, p->lookup, p->table_size, table, lut, p->partial_slabs, rays,
-                                    inter);
+            rc = lighting ? ref_composite_lit(vol, &f, p->mode, p->lookup, p->table_size, table, lit_table, lut, rays,
+                                              lighting, inter)
+                          : ref_composite_rays(vol, &f, p->mode, p->lookup, p->table_size, table, lut,
+                                               p->partial_slabs, rays, inter);
         if (rc == 0)
             rc = ref_warp_rays(&f, rays, inter, p->background, rgb);
     }
+    free(lit_table);
     free(table);
     free(inter);
     free(lut);
@@ -429,4 +620,37 @@ double ref_slice_sample(const uint8_t *slice, int ni, double x, double y)
 void ref_composite_segment(double *pix, const double *seg)
 {
     composite(pix, seg);
+}
+
+/* ---- For ref_order2.c (ref.h): a frame's shading, as the lit modes above have it. ---- */
+
+struct ref_shading {
+    shading_t sh;
+};
+
+ref_shading_t *ref_shading_new(const ref_volume_t *vol, const ref_factor_t *f, const ref_lighting_t *lighting)
+{
+    ref_shading_t *s = malloc(sizeof *s);
+    if (s && shading_init(&s->sh, vol, f, lighting)) {
+        free(s);
+        s = NULL;
+    }
+    return s;
+}
+
+void ref_shading_free(ref_shading_t *s)
+{
+    if (s)
+        shading_free(&s->sh);
+    free(s);
+}
+
+void ref_shading_slice(ref_shading_t *s, const ref_volume_t *vol, const ref_factor_t *f, int k, int which)
+{
+    shade_slice(&s->sh, vol, f, k, which);
+}
+
+ref_shade_t ref_shading_sample(const ref_shading_t *s, int which, int ni, double x, double y)
+{
+    return sample_shade(&s->sh, which, ni, x, y);
 }

@@ -1,4 +1,5 @@
-/* ref_tables.c: transfer function, classification, point table and brute-force pre-integrated table (section 2). */
+/* ref_tables.c: transfer function, classification, point table and brute-force pre-integrated table (section 2),
+ * and the front-weighted table of lit slabs (section 7). */
 #include "ref/ref.h"
 
 #include <math.h>
@@ -140,6 +141,71 @@ int ref_preint_table(const ref_tf_point_t *tf, int npoints, int N, double d, dou
                 e[3] = C[2];
             }
         }
+    }
+    free(tau);
+    return 0;
+}
+
+double ref_mean_depth(double x)
+{
+    if (x < 1e-3) /* 1/2 - x/12 + x^3/720: the closed form cancels here */
+        return 0.5 - x / 12 + x * x * x / 720;
+    return 1 / x - 1 / expm1(x); /* exp(-x) / (1 - exp(-x)) = 1 / (exp(x) - 1) */
+}
+
+/* One piece of opacity alpha (depth x, t = t(x)) and colour c (unpremultiplied) at piece k of `pieces`, behind
+ * transmittance *T: its share of the front-weighted sums S and D, and the transmittance behind it. */
+static void lit_piece(double alpha, double t, const double c[3], int k, int pieces, double *T, double *S, double D[3])
+{
+    const double weight = 1 - (k + t) / pieces;
+    *S += *T * alpha * weight;
+    for (int n = 0; n < 3; n++)
+        D[n] += *T * c[n] * alpha * weight;
+    *T *= 1 - alpha;
+}
+
+/* Section 7: entry (f, b) is r = |b - f| pieces (one of length d for r = 0), met in order; piece k of depth x_k,
+ * opacity alpha_k, colour C_k and transmittance T_k in front of it sends its light out from its mean position
+ * theta_k = (k + t(x_k)) / max(r, 1) along the slab, and the front-weighted sums weight it by 1 - theta_k.
+ * Entries of one diagonal r share the interval depths x_m = (d / r) (tau_m + tau_{m+1}) / 2. */
+int ref_lit_table(const ref_tf_point_t *tf, int npoints, int N, double d, double *out)
+{
+    if (!out || !(d > 0) || !isfinite(d))
+        return -1;
+    double *tau = malloc(sizeof(double) * 9 * (size_t)N);
+    if (!tau)
+        return -1;
+    double *rgb = tau + N, *w = rgb + 3 * N, *alpha = w + 3 * N, *t = alpha + N;
+    if (ref_classify(tf, npoints, N, tau, rgb) != 0) {
+        free(tau);
+        return -1;
+    }
+    for (int m = 0; m + 1 < N; m++)
+        interval_weight(tau, rgb, m, w + 3 * m);
+    for (int f = 0; f < N; f++) {
+        double T = 1, S = 0, D[3] = {0, 0, 0};
+        const double x = tau[f] * d;
+        lit_piece(-expm1(-x), ref_mean_depth(x), rgb + 3 * f, 0, 1, &T, &S, D);
+        double *e = out + 4 * ((size_t)f * N + f);
+        e[0] = S, e[1] = D[0], e[2] = D[1], e[3] = D[2];
+    }
+    for (int r = 1; r < N; r++) {
+        for (int m = 0; m + 1 < N; m++) {
+            const double x = d / r * (tau[m] + tau[m + 1]) / 2;
+            alpha[m] = -expm1(-x);
+            t[m] = ref_mean_depth(x);
+        }
+        for (int lo = 0; lo + r < N; lo++)
+            for (int dir = 0; dir < 2; dir++) {
+                const int f = dir == 0 ? lo : lo + r, b = dir == 0 ? lo + r : lo;
+                double T = 1, S = 0, D[3] = {0, 0, 0};
+                for (int k = 0; k < r; k++) {
+                    const int m = f < b ? f + k : f - 1 - k; /* f, f+1, .., b-1  or  f-1, f-2, .., b */
+                    lit_piece(alpha[m], t[m], w + 3 * m, k, r, &T, &S, D);
+                }
+                double *e = out + 4 * ((size_t)f * N + b);
+                e[0] = S, e[1] = D[0], e[2] = D[1], e[3] = D[2];
+            }
     }
     free(tau);
     return 0;

@@ -75,6 +75,11 @@ double truth_depth(double a0, double a1, double L);
  * control point crossed, each piece exact in optical depth, emission by Gauss-Legendre. */
 void truth_tf_composite(const truth_tf_t *tf, double sa, double sb, double L, truth_acc_t *acc);
 
+/* The same lit by a shade constant over the length (docs/algorithm.md, "Lit truth"): colour c(s) L_d + L_s,
+ * clamped to 1 per channel, and the extinction times the gradient-opacity factor g. */
+void truth_tf_composite_lit(const truth_tf_t *tf, double sa, double sb, double L, ref_shade_t shade,
+                            truth_acc_t *acc);
+
 /* ---- truth_ray.c ----------------------------------------------------------------------------------------- */
 
 /* Section 3's camera for the truth: the ray through final pixel (px, py) is p(t) = origin + t dir in object
@@ -131,6 +136,22 @@ int truth_ray(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, co
 void truth_trace(const ref_volume_t *vol, const truth_tf_t *tf, const truth_camera_t *cam, const truth_opts_t *opts,
                  double px, double py, truth_acc_t *acc);
 
+/* Lighting for the truth (docs/algorithm.md, "Lit truth"): at every sub-step the gradient of the trilinear field
+ * of the raw voxels in world units, shaded as section 7 shades a normal, and its magnitude mapped to 8-bit
+ * magnitudes by 255 |g| / M, M the volume's largest central-difference magnitude (section 7's, in world
+ * units), for the gradient-opacity ramp. */
+typedef struct truth_lit {
+    ref_lights_t lights; /* section 7's lights with the camera's rotation, and the lighting */
+    double most;         /* M in raw units per world unit (section 7's largest m over 2^14); 0: a flat volume */
+} truth_lit_t;
+
+/* Prepare lit tracing for a camera (the lighting's raw voxels go with vol). Returns 0, or -1. */
+int truth_lit_init(truth_lit_t *lit, const ref_volume_t *vol, const truth_camera_t *cam, const ref_lighting_t *l);
+
+/* truth_trace, lit (lit NULL: unlit, truth_trace itself). */
+void truth_trace_lit(const ref_volume_t *vol, const truth_tf_t *tf, const truth_camera_t *cam,
+                     const truth_opts_t *opts, const truth_lit_t *lit, double px, double py, truth_acc_t *acc);
+
 /* ---- truth_render.c -------------------------------------------------------------------------------------- */
 
 /* Rows 0 .. rows - 1 of any grid of rays on threads (1..64), interleaved so that the expensive middle of an image
@@ -145,6 +166,12 @@ int truth_render_ex(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoin
                     double *rgb);
 int truth_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const double background[3],
                  const ref_view_t *view, int out_w, int out_h, int threads, double *rgb);
+
+/* The whole image lit (lighting NULL: truth_render_ex); its study knobs (exact_normals, shade_bits,
+ * lit_table_bits) and normal_bits and shade_lookup do not apply: the truth has no codes and no tables. */
+int truth_render_lit(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const double background[3],
+                     const ref_view_t *view, int out_w, int out_h, int threads, const truth_opts_t *opts,
+                     const ref_lighting_t *lighting, double *rgb);
 
 /* ---- ray_study.c ----------------------------------------------------------------------------------------- */
 

@@ -1,13 +1,16 @@
-/* truth_ray.c: the truth's camera (section 3), trilinear reconstruction, and one ray walked cell by cell. */
+/* truth_ray.c: the truth's camera (section 3), trilinear reconstruction, and one ray walked cell by cell, lit or
+ * not. */
 #include "truth/truth.h"
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define MAX_SUBSTEPS 4096 /* per cell: a bound for absurd tolerances, never reached by the defaults */
 
-static void cell_segment(const ref_volume_t *vol, const truth_tf_t *tf, const truth_opts_t *opts, const int cell[3],
-                         const double o[3], const double d[3], double t0, double t1, truth_acc_t *acc);
+static void cell_segment(const ref_volume_t *vol, const truth_tf_t *tf, const truth_opts_t *opts,
+                         const truth_lit_t *lit, const int cell[3], const double o[3], const double d[3], double t0,
+                         double t1, truth_acc_t *acc);
 
 int truth_camera(const ref_volume_t *vol, const ref_view_t *view, int out_w, int out_h, truth_camera_t *cam)
 {
@@ -81,8 +84,25 @@ double truth_sample(const ref_volume_t *vol, const double p[3])
     return c0 + f[2] * (c1 - c0);
 }
 
+int truth_lit_init(truth_lit_t *lit, const ref_volume_t *vol, const truth_camera_t *cam, const ref_lighting_t *l)
+{
+    if (!lit || !vol || !cam || !l || !l->raw || ref_lights_init(&lit->lights, l, cam->R))
+        return -1;
+    const int64_t most = ref_gradient_most(vol, l->raw, l->raw_type);
+    if (most < 0)
+        return -1;
+    lit->most = (double)most / 16384.0; /* G / 2^14 is dv / dw (section 7) */
+    return 0;
+}
+
 void truth_trace(const ref_volume_t *vol, const truth_tf_t *tf, const truth_camera_t *cam, const truth_opts_t *opts,
                  double px, double py, truth_acc_t *acc)
+{
+    truth_trace_lit(vol, tf, cam, opts, NULL, px, py, acc);
+}
+
+void truth_trace_lit(const ref_volume_t *vol, const truth_tf_t *tf, const truth_camera_t *cam,
+                     const truth_opts_t *opts, const truth_lit_t *lit, double px, double py, truth_acc_t *acc)
 {
     acc->T = 1;
     acc->C[0] = acc->C[1] = acc->C[2] = 0;
@@ -105,7 +125,7 @@ void truth_trace(const ref_volume_t *vol, const truth_tf_t *tf, const truth_came
         int a = t_next[0] <= t_next[1] && t_next[0] <= t_next[2] ? 0 : t_next[1] <= t_next[2] ? 1 : 2;
         double t1 = fmin(t_next[a], t_out);
         if (t1 > t0) {
-            cell_segment(vol, tf, opts, cell, o, d, t0, t1, acc);
+            cell_segment(vol, tf, opts, lit, cell, o, d, t0, t1, acc);
             t0 = t1;
         }
         if (t_next[a] >= t_out)
@@ -146,13 +166,45 @@ int truth_ray(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, co
 
 /* ---- static functions ---------------------------------------------------------------------------------- */
 
-/* Reduced to a quarter turn in integers first, so that multiples of 90 degrees give exact 0 and +-1. */
+/* The raw voxel n, signed where the type is. */
+static double raw_at(const void *raw, int type, size_t n)
+{
+    const unsigned char *p = raw;
+    switch (type) {
+    case REF_VOXEL_U8: return p[n];
+    case REF_VOXEL_I8: return (int8_t)p[n];
+    case REF_VOXEL_U16: { uint16_t v; memcpy(&v, p + 2 * n, 2); return v; }
+    default: { int16_t v; memcpy(&v, p + 2 * n, 2); return v; }
+    }
+}
+
+/* The shade at cell-local point q (each in [0, 1]) from the raw field's trilinear coefficients k (k0, kx, ky, kz,
+ * kxy, kxz, kyz, kxyz): the gradient in index units, then in world units (over Sr), normalised; its magnitude
+ * mapped as section 7's 8-bit magnitudes for the ramp. */
+static ref_shade_t shade_at(const truth_lit_t *lit, const double k[8], const double Sr[3], const double q[3])
+{
+    const double x = q[0], y = q[1], z = q[2];
+    double g[3] = {k[1] + k[4] * y + k[5] * z + k[7] * y * z, k[2] + k[4] * x + k[6] * z + k[7] * x * z,
+                   k[3] + k[5] * x + k[6] * y + k[7] * x * y};
+    for (int a = 0; a < 3; a++)
+        g[a] /= Sr[a];
+    const double len = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    double n[3] = {0, 0, 0};
+    for (int a = 0; len > 0 && a < 3; a++)
+        n[a] = g[a] / len;
+    ref_shade_t out;
+    ref_shade_normal(&lit->lights, n, &out.d, &out.s);
+    out.g = ref_gradient_factor(lit->lights.lighting, lit->most > 0 ? 255 * len / lit->most : 0);
+    return out;
+}
+
 /* The ray's piece [t0, t1] inside one cell. Along it the trilinear scalar is a cubic b0 + b1 u + b2 u^2 +
  * b3 u^3 in u in [0, 1]; it is taken as linear across sub-steps of at most max_step voxels (index and world
  * length both) and short enough that the cubic's distance from its chord, at most |f''| / (8 n^2), stays within
  * scalar_tol. */
-static void cell_segment(const ref_volume_t *vol, const truth_tf_t *tf, const truth_opts_t *opts, const int cell[3],
-                         const double o[3], const double d[3], double t0, double t1, truth_acc_t *acc)
+static void cell_segment(const ref_volume_t *vol, const truth_tf_t *tf, const truth_opts_t *opts,
+                         const truth_lit_t *lit, const int cell[3], const double o[3], const double d[3], double t0,
+                         double t1, truth_acc_t *acc)
 {
     size_t sy = (size_t)vol->dims[0], sz = sy * vol->dims[1];
     const uint8_t *v = vol->scalars + cell[0] + sy * cell[1] + sz * cell[2];
@@ -191,12 +243,33 @@ static void cell_segment(const ref_volume_t *vol, const truth_tf_t *tf, const tr
     steps = fmax(steps, ceil(sqrt(curve / (8 * tol))));
     int n = steps < 1 ? 1 : steps > MAX_SUBSTEPS ? MAX_SUBSTEPS : (int)steps;
     double s_prev = b0, h = length / n;
+    /* lit: the raw field's trilinear coefficients in this cell (for its gradient) and the relative spacing */
+    double rk[8] = {0}, Sr[3] = {1, 1, 1};
+    if (lit) {
+        double r[8];
+        for (int m = 0; m < 8; m++)
+            r[m] = raw_at(lit->lights.lighting->raw, lit->lights.lighting->raw_type,
+                          (size_t)(cell[0] + (m & 1)) + sy * (size_t)(cell[1] + ((m >> 1) & 1)) +
+                              sz * (size_t)(cell[2] + (m >> 2)));
+        rk[0] = r[0], rk[1] = r[1] - r[0], rk[2] = r[2] - r[0], rk[3] = r[4] - r[0];
+        rk[4] = r[3] - r[1] - r[2] + r[0], rk[5] = r[5] - r[1] - r[4] + r[0], rk[6] = r[6] - r[2] - r[4] + r[0];
+        rk[7] = r[7] - r[3] - r[5] - r[6] + r[1] + r[2] + r[4] - r[0];
+        const double spmin = fmin(vol->spacing[0], fmin(vol->spacing[1], vol->spacing[2]));
+        for (int a = 0; a < 3; a++)
+            Sr[a] = vol->spacing[a] / spmin;
+    }
     for (int k = 1; k <= n && acc->T > 1.0 - TRUTH_STOP_OPACITY; k++) {
         double u = (double)k / n, s = b0 + u * (b1 + u * (b2 + u * b3));
         /* most sub-steps of a cell near a narrow peak miss it: the integer range check is cheaper than the walk */
         int below = (int)floor(fmax(fmin(s, s_prev), 0.0)), above = (int)ceil(fmin(fmax(s, s_prev), 255.0));
-        if (!truth_tf_clear(tf, below, above))
-            truth_tf_composite(tf, s_prev, s, h, acc);
+        if (!truth_tf_clear(tf, below, above)) {
+            if (lit) { /* the sub-step's shade at its middle */
+                const double um = (k - 0.5) / n, q[3] = {x + um * X, y + um * Y, z + um * Z};
+                truth_tf_composite_lit(tf, s_prev, s, h, shade_at(lit, rk, Sr, q), acc);
+            } else {
+                truth_tf_composite(tf, s_prev, s, h, acc);
+            }
+        }
         s_prev = s;
     }
 }

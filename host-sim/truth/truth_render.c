@@ -9,6 +9,7 @@ typedef struct job {
     const truth_tf_t *tf;
     const truth_camera_t *cam;
     const truth_opts_t *opts;
+    const truth_lit_t *lit; /* NULL: unlit */
     const double *background;
     double *rgb;
 } job_t;
@@ -53,7 +54,7 @@ static void render_row(const void *ctx, int py)
     int w = j->cam->out_w;
     for (int px = 0; px < w; px++) {
         truth_acc_t acc;
-        truth_trace(j->vol, j->tf, j->cam, j->opts, px, py, &acc);
+        truth_trace_lit(j->vol, j->tf, j->cam, j->opts, j->lit, px, py, &acc);
         double *out = j->rgb + 3 * ((size_t)py * w + px);
         for (int c = 0; c < 3; c++)
             out[c] = acc.C[c] + acc.T * j->background[c];
@@ -64,18 +65,26 @@ int truth_render_ex(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoin
                     const ref_view_t *view, int out_w, int out_h, int threads, const truth_opts_t *opts,
                     double *rgb)
 {
+    return truth_render_lit(vol, tf, npoints, background, view, out_w, out_h, threads, opts, NULL, rgb);
+}
+
+int truth_render_lit(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const double background[3],
+                     const ref_view_t *view, int out_w, int out_h, int threads, const truth_opts_t *opts,
+                     const ref_lighting_t *lighting, double *rgb)
+{
     truth_opts_t defaults = TRUTH_OPTS_DEFAULT;
     truth_camera_t cam;
+    truth_lit_t lit;
     if (!background || !rgb || threads < 1 || threads > TRUTH_MAX_THREADS ||
         (opts && !(opts->max_step > 0 && opts->scalar_tol > 0 && opts->steep >= 0)) ||
-        truth_camera(vol, view, out_w, out_h, &cam))
+        truth_camera(vol, view, out_w, out_h, &cam) || (lighting && truth_lit_init(&lit, vol, &cam, lighting)))
         return -1;
     truth_tf_t *prepared = malloc(sizeof *prepared);
     if (!prepared || truth_tf_init(prepared, tf, npoints)) {
         free(prepared);
         return -1;
     }
-    const job_t job = {vol, prepared, &cam, opts ? opts : &defaults, background, rgb};
+    const job_t job = {vol, prepared, &cam, opts ? opts : &defaults, lighting ? &lit : NULL, background, rgb};
     truth_rows(out_h, threads, render_row, &job);
     free(prepared);
     return 0;

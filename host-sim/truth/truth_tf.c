@@ -1,4 +1,5 @@
-/* truth_tf.c: the continuous transfer function, and the exact integration of a linear scalar segment through it. */
+/* truth_tf.c: the continuous transfer function, and the exact integration of a linear scalar segment through it,
+ * lit or not. */
 #include "truth/truth.h"
 
 #include <math.h>
@@ -17,6 +18,8 @@ static double unit_steepness(const truth_tf_t *tf, int m);
 static void composite_piece(double a0, double a1, const double c0[3], const double c1[3], double L, truth_acc_t *acc);
 static void composite_graded(double a0, double a1, const double c0[3], const double c1[3], double L,
                              truth_acc_t *acc);
+static void composite(const truth_tf_t *tf, double sa, double sb, double L, const ref_shade_t *shade,
+                      truth_acc_t *acc);
 
 int truth_tf_init(truth_tf_t *tf, const ref_tf_point_t *p, int n)
 {
@@ -81,12 +84,37 @@ double truth_depth(double a0, double a1, double L)
 
 void truth_tf_composite(const truth_tf_t *tf, double sa, double sb, double L, truth_acc_t *acc)
 {
+    composite(tf, sa, sb, L, NULL, acc);
+}
+
+/* The extinction times g over L is the extinction over g L: optical depth and emission depend on L only through
+ * L tau. */
+void truth_tf_composite_lit(const truth_tf_t *tf, double sa, double sb, double L, ref_shade_t shade,
+                            truth_acc_t *acc)
+{
+    if (shade.g > 0)
+        composite(tf, sa, sb, L * shade.g, &shade, acc);
+}
+
+/* ---- static functions ---------------------------------------------------------------------------------- */
+
+/* The colour a shade makes of colour c: c L_d + L_s, at most 1 (no shade: c itself). */
+static void lit_colour(const ref_shade_t *shade, double c[3])
+{
+    for (int n = 0; shade && n < 3; n++)
+        c[n] = fmin(c[n] * shade->d + shade->s, 1.0);
+}
+
+static void composite(const truth_tf_t *tf, double sa, double sb, double L, const ref_shade_t *shade,
+                      truth_acc_t *acc)
+{
     double ca[3], cb[3];
     if (sa == sb) {
         const truth_seg_t *g = &tf->seg[seg_up(tf, sa)];
         double a = seg_a(g, sa);
         if (a > 0) {
             seg_c(g, sa, ca);
+            lit_colour(shade, ca);
             composite_piece(a, a, ca, ca, L, acc);
         }
         return;
@@ -101,6 +129,8 @@ void truth_tf_composite(const truth_tf_t *tf, double sa, double sb, double L, tr
         if ((a0 > 0 || a1 > 0) && end != s) {
             seg_c(g, s, ca);
             seg_c(g, end, cb);
+            lit_colour(shade, ca); /* linear between the two when the clamp holds at neither or both */
+            lit_colour(shade, cb);
             composite_graded(a0, a1, ca, cb, per_level * fabs(end - s), acc);
         }
         if (end == sb || acc->T <= 1.0 - TRUTH_STOP_OPACITY)
@@ -109,8 +139,6 @@ void truth_tf_composite(const truth_tf_t *tf, double sa, double sb, double L, tr
         i += up ? 1 : -1;
     }
 }
-
-/* ---- static functions ---------------------------------------------------------------------------------- */
 
 static void add_seg(truth_tf_t *tf, double s0, double s1, const double v0[4], const double v1[4])
 {

@@ -18,29 +18,30 @@ typedef struct preset {
     const char *about;
     int count;
     vfp_tf_point_t points[12];
+    int shade; /* the preset's default shading (vfp_tf_look_t.shade: 1 phong, 0 none) */
 } preset_t;
 
 /* Normalised to the window. Opacity is per voxel: a slab of a few voxels at 0.3 is already mostly opaque. */
 static const preset_t presets[] = {
     {"ramp", "opacity and grey level rise linearly from 0 to 1 over the window (the benchmark setting)", 2,
-     {{0.0, 0, 0, 0, 0}, {1.0, 1, 1, 1, 1}}},
+     {{0.0, 0, 0, 0, 0}, {1.0, 1, 1, 1, 1}}, 0},
     /* Narrow, but resolved: each peak is 0.04 of the range wide, ten entries of the default 256-entry table
      * (narrower peaks test the table's resolution more than the integration; see the precision study). */
     {"sharp", "three narrow opacity peaks (orange, green, white): the case pre-integration exists for", 10,
      {{0.0, 0, 0, 0, 0},
       {0.28, 1, 0.5, 0.1, 0}, {0.30, 1, 0.5, 0.1, 0.9}, {0.32, 1, 0.5, 0.1, 0},
       {0.53, 0.2, 1, 0.3, 0}, {0.55, 0.2, 1, 0.3, 0.9}, {0.57, 0.2, 1, 0.3, 0},
-      {0.78, 1, 1, 1, 0}, {0.80, 1, 1, 1, 1}, {0.82, 1, 1, 1, 0}}},
+      {0.78, 1, 1, 1, 0}, {0.80, 1, 1, 1, 1}, {0.82, 1, 1, 1, 0}}, 0},
     /* CT: with the default window (0.5 to 99.5 percentiles) air sits near 0, soft tissue near 0.42 and bone
      * from about 0.55 up; the skin layer is the partial-volume ramp between air and tissue. */
     {"ct-bone", "CT: bone, ivory and opaque; soft tissue and air clear", 4,
-     {{0.0, 1, 0.95, 0.85, 0}, {0.52, 1, 0.95, 0.85, 0}, {0.62, 1, 0.95, 0.85, 0.5}, {1.0, 1, 1, 1, 0.9}}},
+     {{0.0, 1, 0.95, 0.85, 0}, {0.52, 1, 0.95, 0.85, 0}, {0.62, 1, 0.95, 0.85, 0.5}, {1.0, 1, 1, 1, 0.9}}, 1},
     {"ct-skin-bone", "CT: a thin translucent skin over opaque bone", 7,
      {{0.0, 0.9, 0.6, 0.45, 0}, {0.30, 0.9, 0.6, 0.45, 0}, {0.35, 0.9, 0.6, 0.45, 0.08},
-      {0.40, 0.9, 0.6, 0.45, 0}, {0.52, 1, 0.95, 0.85, 0}, {0.62, 1, 0.95, 0.85, 0.5}, {1.0, 1, 1, 1, 0.9}}},
+      {0.40, 0.9, 0.6, 0.45, 0}, {0.52, 1, 0.95, 0.85, 0}, {0.62, 1, 0.95, 0.85, 0.5}, {1.0, 1, 1, 1, 0.9}}, 1},
     {"mr-brain", "MR: soft opacity ramp from dark red through orange to white", 5,
      {{0.0, 0.3, 0.05, 0.05, 0}, {0.15, 0.5, 0.1, 0.05, 0}, {0.4, 0.9, 0.45, 0.2, 0.04},
-      {0.7, 1, 0.85, 0.6, 0.12}, {1.0, 1, 1, 1, 0.3}}},
+      {0.7, 1, 0.85, 0.6, 0.12}, {1.0, 1, 1, 1, 0.3}}, 0},
 };
 
 #define PRESET_COUNT (sizeof presets / sizeof presets[0])
@@ -58,6 +59,7 @@ vfp_status_t vfp_tf_preset(vfp_tf_t *tf, const char *name, char *err, size_t err
             snprintf(tf->name, sizeof tf->name, "%s", name);
             tf->count = presets[i].count;
             memcpy(tf->points, presets[i].points, sizeof(vfp_tf_point_t) * (size_t)presets[i].count);
+            tf->look.shade = presets[i].shade; /* the default material: the programs' (vf_lighting_default) */
             return VFP_OK;
         }
     snprintf(err, errlen, "unknown preset '%s' (expected ramp, sharp, ct-bone, ct-skin-bone or mr-brain)", name);
@@ -72,9 +74,40 @@ const char *vfp_tf_preset_about(const char *name)
     return NULL;
 }
 
+/* A "shade" or "material" line (the word already read) into look. Returns VFP_OK, or VFP_ERR with what was
+ * expected in err (the caller adds the file and line). */
+static vfp_status_t look_line(const char *word, const char *line, vfp_tf_look_t *look, char *err, size_t errlen)
+{
+    char rest[32], extra[2];
+    if (strcmp(word, "shade") == 0) {
+        if (sscanf(line, " shade %31s %1s", rest, extra) == 1 && strcmp(rest, "phong") == 0)
+            look->shade = 1;
+        else if (sscanf(line, " shade %31s %1s", rest, extra) == 1 && strcmp(rest, "none") == 0)
+            look->shade = 0;
+        else {
+            snprintf(err, errlen, "expected 'shade phong' or 'shade none'");
+            return VFP_ERR;
+        }
+        return VFP_OK;
+    }
+    double k[4];
+    if (sscanf(line, " material %lf %lf %lf %lf %1s", &k[0], &k[1], &k[2], &k[3], extra) != 4 ||
+        !(k[0] >= 0 && k[0] <= 1 && k[1] >= 0 && k[1] <= 1 && k[2] >= 0 && k[2] <= 1) ||
+        !(k[3] >= 1 && k[3] <= 255 && k[3] == floor(k[3]))) {
+        snprintf(err, errlen, "expected 'material KA KD KS N': ambient, diffuse and specular in [0, 1] and an "
+                              "integer shininess from 1 to 255");
+        return VFP_ERR;
+    }
+    look->have_material = 1;
+    look->ka = k[0], look->kd = k[1], look->ks = k[2];
+    look->shininess = (int)k[3];
+    return VFP_OK;
+}
+
 vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
 {
     memset(tf, 0, sizeof *tf);
+    tf->look.shade = -1;
     FILE *f = fopen(path, "r");
     if (!f) {
         snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
@@ -109,6 +142,14 @@ vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errle
                 tf->data_units = 1;
             } else {
                 snprintf(err, errlen, "%s:%d: expected 'units normalized' or 'units data'", path, lineno);
+                status = VFP_ERR;
+            }
+            continue;
+        }
+        if (strcmp(word, "shade") == 0 || strcmp(word, "material") == 0) {
+            char what[256];
+            if (look_line(word, line, &tf->look, what, sizeof what)) {
+                snprintf(err, errlen, "%s:%d: %s", path, lineno, what);
                 status = VFP_ERR;
             }
             continue;

@@ -10,6 +10,12 @@
  *     0.40   1 0.8 0.6   0.05   # scalar  red green blue  opacity-per-voxel
  *     1.00   1 1 1   0.9
  *
+ * A file may also say how it is lit (docs/algorithm.md, section 7; the command line's --shade and --material win
+ * over it):
+ *
+ *     shade phong               # or "shade none": unlit
+ *     material 0.1 0.7 0.2 10   # ambient, diffuse, specular in [0, 1], shininess an integer 1..255
+ *
  * Scalars are non-decreasing. With "units normalized" a scalar of 0 is the bottom of the window and 1 its top,
  * so the function moves with the window (CT window/level); with "units data" scalars are data values (after a
  * NIfTI slope and intercept), fixed to the data whatever the window. Colour and opacity are in [0, 1]; opacity
@@ -28,11 +34,20 @@ typedef struct vfp_tf_point {
     double s, r, g, b, a;
 } vfp_tf_point_t;
 
+/* How a transfer function is meant to be lit, when it says (a file's shade and material lines; a preset's). */
+typedef struct vfp_tf_look {
+    int shade;             /* 1: phong, 0: none, -1: not said (the programs' default: none) */
+    int have_material;     /* the material below was given */
+    double ka, kd, ks;     /* ambient, diffuse, specular, [0, 1] */
+    int shininess;         /* 1..255 */
+} vfp_tf_look_t;
+
 typedef struct vfp_tf {
     char name[64];
     int data_units; /* 0: scalars normalised to the window; 1: data units */
     int count;
     vfp_tf_point_t points[VF_MAX_TF_POINTS];
+    vfp_tf_look_t look;
 } vfp_tf_t;
 
 /* Read a transfer-function file. Returns VFP_OK, or VFP_ERR with a one-line "FILE:LINE: ..." message in err. */

@@ -128,11 +128,15 @@ static void log_frame(loop_t *L, int full, double ms, double present_ms, double 
     long rss_kb, peak_kb;
     memory_kb(&rss_kb, &peak_kb);
     fprintf(v->log, " rss %ld KB peak %ld KB", rss_kb, peak_kb);
-    fprintf(v->log, ": --view %.17g,%.17g,%.17g --zoom %.17g --tf-move %.17g,%.17g %s --mode %s --window %.17g,%.17g "
+    char lighting[256]; /* the transfer function's lighting, as volfix-sim's options give it */
+    vf_params_t p = s->params;
+    p.lighting = s->lit[c->preset] != 0;
+    vfp_lighting_args(&p, &s->lighting[c->preset], lighting, sizeof lighting);
+    fprintf(v->log, ": --view %.17g,%.17g,%.17g --zoom %.17g --tf-move %.17g,%.17g %s --mode %s%s --window %.17g,%.17g "
                     "--size %ux%u --format %s",
             c->azimuth, c->elevation, wrap360(c->roll - v->board.rotation), c->zoom, c->tf_shift, c->tf_scale,
-            s->tf_args[c->preset], vf_mode_name(c->mode), s->window.lo * slope + inter, s->window.hi * slope + inter,
-            L->frame.width, L->frame.height, format_name(L->frame.format));
+            s->tf_args[c->preset], vf_mode_name(c->mode), lighting, s->window.lo * slope + inter,
+            s->window.hi * slope + inter, L->frame.width, L->frame.height, format_name(L->frame.format));
     if (!full && s->preview_factor > 1)
         fprintf(v->log, " --downsample %d", s->preview_factor);
     fputc('\n', v->log);

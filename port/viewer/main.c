@@ -11,11 +11,19 @@
 
 #include "viewer.h"
 
+/* Where a board named without a slash (--board rpi4-spi-st7789) is looked for: the installed boards, set by the
+ * Makefile from PREFIX. */
+#ifndef VFP_BOARD_DIR
+#define VFP_BOARD_DIR "/usr/local/share/volfix/boards"
+#endif
+
 static const char usage[] =
-    "usage: volfix --board FILE VOLUME [options]\n"
+    "usage: volfix --board BOARD VOLUME [options]\n"
     "Show VOLUME on the board's display and turn it with the board's knobs (boards/README.md). While a knob\n"
     "turns, frames come from a half-resolution copy; full quality follows once the knobs rest.\n\n"
-    "  --board FILE         the board: display, inputs, what each knob and button does (required)\n"
+    "  --board BOARD        the board: display, inputs, what each knob and button does (required); a path\n"
+    "                       with a slash is a board file, a name (rpi4-spi-st7789) one of the installed boards\n"
+    "                       in " VFP_BOARD_DIR "\n"
     "  --preset NAME        transfer function to start with: ramp (default), sharp, ct-bone, ct-skin-bone or\n"
     "                       mr-brain; the preset button cycles through them all\n"
     "  --tf FILE            start with a transfer-function file (the preset button cycles it and the presets)\n"
@@ -36,6 +44,10 @@ static const char usage[] =
     "                       render options that give the same pixels\n"
     "  --frames N           leave after N frames (long runs and tests)\n"
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]   for raw voxel files\n"
+    "  --version            print the version and leave\n"
+    "Lighting (docs/algorithm.md section 7), for every transfer function the preset button cycles to; each\n"
+    "otherwise lit as it says itself:\n"
+    VFP_LIGHTING_HELP
     "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N. Ctrl-C quits.\n";
 
 static vfp_status_t bad(const char *option, const char *value, const char *expected)
@@ -55,12 +67,14 @@ static vfp_status_t parse_int(const char *text, int lo, int hi, int *out)
 }
 
 typedef struct options {
+    char board_path[1024]; /* --board NAME: the installed board's file */
     const char *board, *volume, *preset, *tf, *window, *script, *device, *log;
     vf_mode_t mode;
     double view[3], zoom;
     uint32_t width, height;
     int preview, idle_ms, threads, overlay, frames;
     vfp_load_opts_t load;
+    vfp_lighting_opts_t lighting;
 } options_t;
 
 static vfp_status_t parse(options_t *o, int argc, char **argv)
@@ -71,12 +85,16 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
     o->view[1] = 20;
     o->zoom = 1;
     o->preview = o->idle_ms = o->threads = -1;
+    vfp_lighting_opts_init(&o->lighting);
     char err[VIEWER_ERR_LEN];
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = 1;
+        int takes = 1, took;
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             fputs(usage, stdout);
+            return VFP_HELP_SHOWN;
+        } else if (!strcmp(a, "--version")) {
+            printf("volfix %s\n", vf_version());
             return VFP_HELP_SHOWN;
         } else if (!strcmp(a, "--board") && v) {
             o->board = v;
@@ -150,6 +168,9 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
             if (!v || sscanf(v, "%lf,%lf,%lf", &s[0], &s[1], &s[2]) != 3 || !(s[0] > 0 && s[1] > 0 && s[2] > 0))
                 return bad(a, v, "X,Y,Z, three positive numbers");
             o->load.have_spacing = 1;
+        } else if ((took = vfp_lighting_option(&o->lighting, "volfix", a, v)) != 0) {
+            if (took < 0)
+                return VFP_ERR;
         } else if (a[0] != '-' && !o->volume) {
             o->volume = a;
             takes = 0;
@@ -160,12 +181,31 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
         i += takes;
     }
     if (!o->board || !o->volume) {
-        fprintf(stderr, "volfix: %s (usage: volfix --board FILE VOLUME [options]; see --help)\n",
+        fprintf(stderr, "volfix: %s (usage: volfix --board BOARD VOLUME [options]; see --help)\n",
                 !o->board ? "no board given" : "no volume given");
         return VFP_ERR;
     }
+    if (!strchr(o->board, '/')) {
+        size_t n = strlen(o->board);
+        const char *ext = n > 6 && !strcmp(o->board + n - 6, ".board") ? "" : ".board";
+        if (!n || snprintf(o->board_path, sizeof o->board_path, "%s/%s%s", VFP_BOARD_DIR, o->board, ext) >=
+                      (int)sizeof o->board_path) {
+            fprintf(stderr, "volfix: --board '%s': expected a board name or a path to a board file\n", o->board);
+            return 2;
+        }
+        if (access(o->board_path, R_OK) != 0) {
+            fprintf(stderr, "volfix: --board %s: no board of that name in %s (a board file's path needs a slash: "
+                    "./%s)\n", o->board, VFP_BOARD_DIR, o->board);
+            return 2;
+        }
+        o->board = o->board_path;
+    }
     if (o->preset && o->tf) {
         fprintf(stderr, "volfix: give --preset or --tf, not both\n");
+        return VFP_ERR;
+    }
+    if (vfp_lighting_check(&o->lighting, err, sizeof err)) {
+        fprintf(stderr, "volfix: %s\n", err);
         return VFP_ERR;
     }
     return VFP_OK;
@@ -227,6 +267,13 @@ static vfp_status_t setup(viewer_t *v, const options_t *o, char *err, size_t err
     if (load_tfs(s, o, &first, err, errlen))
         return VFP_ERR;
     vf_params_default(&s->params);
+    for (int k = 0; k < s->tf_count; k++) { /* each transfer function's lighting; renderers are made to suit */
+        vf_params_t p = s->params;
+        vfp_lighting_resolve(&o->lighting, &s->tfs[k], &p, &s->lighting[k]);
+        s->lit[k] = p.lighting;
+        s->params.normal_bits = p.normal_bits;
+        s->params.shade_lookup = p.shade_lookup;
+    }
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     s->threads = o->threads > 0 ? o->threads : b->threads > 0 ? b->threads : cpus < 1 ? 1 : cpus > 16 ? 16 : (int)cpus;
     const uint32_t *d = s->full.core.dims;

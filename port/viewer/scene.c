@@ -1,6 +1,7 @@
 /* scene.c: bringing a renderer up to date with the controls, and rendering a frame of them (see viewer.h). */
 #include "viewer.h"
 
+#include <stdio.h>
 #include <string.h>
 
 void viewer_renderer_close(viewer_renderer_t *vr)
@@ -13,12 +14,14 @@ void viewer_renderer_close(viewer_renderer_t *vr)
 vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_volume_t *volume,
                          const vfp_controls_t *c, char *err, size_t errlen)
 {
-    if (vr->open && (vr->volume != volume || vr->mode != c->mode))
+    const int lit = scene->lit[c->preset];
+    if (vr->open && (vr->volume != volume || vr->mode != c->mode || vr->lit != lit))
         viewer_renderer_close(vr);
     int fresh = !vr->open;
     if (fresh) {
         vf_params_t params = scene->params;
         params.mode = c->mode;
+        params.lighting = lit != 0;
         /* preint2's 3D table takes about 22 ms to rebuild at 64^3 (docs/performance.md), too long to wait for at
          * every turn of a knob: it is built once for d0 and corrected through the opacity lookup */
         if (params.mode == VF_MODE_PREINT2)
@@ -28,6 +31,7 @@ vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, con
         vr->open = 1;
         vr->volume = volume;
         vr->mode = c->mode;
+        vr->lit = lit;
         /* The window is fixed for the session (the level and width knobs move the transfer function instead):
          * the slices are built once per renderer. */
         if (vfp_render_set_window(&vr->r, scene->window, err, errlen)) {
@@ -42,6 +46,13 @@ vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, con
         uint32_t n = vfp_tf_to_core(&tf, &scene->full, scene->window, points);
         if (vfp_render_set_tf(&vr->r, points, n, err, errlen)) {
             viewer_renderer_close(vr); /* half applied: start again next time */
+            return VFP_ERR;
+        }
+        /* after the transfer function: a renderer made again for longer run lists starts with the default lighting */
+        vf_status_t ls = lit ? vf_renderer_set_lighting(vr->r.core, &scene->lighting[c->preset]) : VF_OK;
+        if (ls != VF_OK) {
+            snprintf(err, errlen, "cannot light the frames: %s", vf_status_text(ls));
+            viewer_renderer_close(vr);
             return VFP_ERR;
         }
         vr->preset = c->preset;

@@ -25,6 +25,7 @@
 #include "display/display.h"
 #include "input/input.h"
 #include "render/render_mt.h"
+#include "io/lighting_opts.h"
 #include "io/tf.h"
 #include "io/volume.h"
 
@@ -40,7 +41,11 @@ typedef struct viewer_scene {
     vfp_tf_t tfs[VIEWER_MAX_TFS];
     char tf_args[VIEWER_MAX_TFS][VFP_PATH_LEN + 16]; /* how volfix-sim names each: "--preset ramp", "--tf FILE" */
     int tf_count;
-    vf_params_t params;      /* the mode comes from the controls */
+    vf_params_t params;      /* the mode comes from the controls, lighting from the transfer function */
+    /* How each transfer function is lit (the lighting options and its own shade and material lines): frames of
+     * transfer function k are lit when lit[k], with lighting[k] */
+    int lit[VIEWER_MAX_TFS];
+    vf_lighting_t lighting[VIEWER_MAX_TFS];
     int threads;
 } viewer_scene_t;
 
@@ -50,12 +55,14 @@ typedef struct viewer_renderer {
     int open;
     const vfp_volume_t *volume;
     vf_mode_t mode;
+    int lit;                 /* made with params.lighting (for a lit transfer function) */
     int preset;
     double tf_shift, tf_scale;
 } viewer_renderer_t;
 
-/* Bring vr up to date with c: a new renderer for a new mode, a reclassification for a new transfer function.
- * Returns VFP_OK, or VFP_ERR with err. */
+/* Bring vr up to date with c: a new renderer for a new mode or when the transfer function's lighting is turned on
+ * or off (a lit renderer keeps normals, which cost memory), a reclassification and its lighting for a new transfer
+ * function. Returns VFP_OK, or VFP_ERR with err. */
 vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_volume_t *volume,
                          const vfp_controls_t *c, char *err, size_t errlen);
 /* Render a frame of c into image (after viewer_sync). */

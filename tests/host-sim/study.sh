@@ -14,6 +14,10 @@ mkdir -p out
 suite=study
 . tests/check.inc
 
+if ! command -v gnuplot >/dev/null; then
+    echo "skip - study: gnuplot is missing, which draws the report's plots (install gnuplot-nox fonts-dejavu-core)"
+    exit 0
+fi
 if ! "$sim" study --quick -o "$dir" >out/study.log 2>&1; then
     fail "runs" "$(tail -n 3 out/study.log | tr '\n' ' ')"
     exit 0
@@ -64,7 +68,8 @@ awk "BEGIN { exit !($gain >= 6) }" && ok "preint1 $gain dB closer to the truth t
     fail "preint1 at least 6 dB closer inside Marschner-Lobb" "measured $gain dB"
 [ -n "$fixed" ] && [ "$cases" -ge 10 ] && [ "$fixed" -le 1 ] &&
     ok "default configuration within $fixed level of the reference over $cases renders" ||
-    fail "default fixed-point error at most 1" "max $fixed over $cases renders"
+    fail "default fixed-point error at most 1" "max $fixed over $cases renders$([ -f "${VOLFIX_DATA:-}/neghip.nhdr" ] ||
+        echo " (no neghip.nhdr in VOLFIX_DATA='${VOLFIX_DATA:-}': set it to the folder of sample volumes)")"
 # where the whole view's distance comes from: the exact integrals at shear-warp's own rays, warped, are closer to
 # the truth than any mode's reference (else the floor's rays or warp do not line up with the renderer's), and on
 # those rays pre-integration integrates better than point sampling
@@ -109,3 +114,24 @@ awk "BEGIN { split(\"$said\", w, \" \"); exit !(w[1] - $claim < 0.006 && $claim 
     [ "${said#* }" = "$verdict" ] && grep -qF "($claim_strip)" "$dir/report.md" &&
     ok "claim 1 without the shared errors reported ($said) with its strip" ||
     fail "claim 1 without the shared errors reported" "summary $claim dB ($verdict), report says '$said'"
+# the lighting stages: a plot each in the report, and their runs in results.csv: 14-bit normal codes within 50 dB
+# of the reference with unquantised normals, the core's 14 fraction bits of shade and 8-bit front-weighted values
+# within a level of their exact reference (docs/usage.md, "Lighting")
+missing=""
+for f in normal_bits.png shade_bits.png lit_table_bits.png; do
+    [ -s "$dir/$f" ] && grep -q "($f)" "$dir/report.md" || missing="$missing $f"
+done
+grep -qF "## Lighting" "$dir/report.md" || missing="$missing '## Lighting'"
+[ -z "$missing" ] && ok "the lighting stages' plots in the report" || fail "lighting plots" "missing:$missing"
+row() { # FACTOR VALUE: "ref_psnr_db ref_max" of ml41-sharp-lit's run
+    awk -F, -v f="$1" -v v="$2" 'NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+        $1 == "ml41-sharp-lit" && $(col["factor"] + 1) == f && $(col["value"] + 1) == v {
+            print $(col["ref_psnr_db"] + 1), $(col["ref_max"] + 1) }' "$dir/results.csv"
+}
+# the view "30,20" is one quoted field holding a comma: every column after it is one further right
+set -- $(row normal_bits 14) $(row shade_bits 14) $(row lit_table_bits 8)
+if [ $# -eq 6 ] && awk "BEGIN { exit !($1 >= 50 && $4 <= 1 && $6 <= 1) }"; then
+    ok "lit Marschner-Lobb: 14-bit normals $1 dB from unquantised ones; shade table at 14 fraction bits, lit table at 8 bits within a level"
+else
+    fail "lighting stages' figures" "normal_bits 14: '$1 $2', shade_bits 14: '$3 $4', lit_table_bits 8: '$5 $6'"
+fi

