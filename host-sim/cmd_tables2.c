@@ -21,7 +21,8 @@ static const char usage[] =
     "first-order pieces along the quadratic through its three scalars, composited (docs/algorithm.md,\n"
     "section 8). Print the build time (the median of R builds), the memory of the 3D table (and with --lit of its\n"
     "front- and back-weighted values) and of the Q.30 pieces it is built from, and the largest and mean\n"
-    "difference of its values from the double reference's build, in LSB of the table format.\n\n"
+    "difference of its values (and with --lit of its lighting values) from the double reference's build, in LSB of\n"
+    "the table format.\n\n"
     "  --preset NAME, --tf FILE   the transfer function (default: ramp); scalars 0..1 span the table\n"
     "  --size N2            entries a side of the 3D table, 16..128 (default 64)\n"
     "  --table-size N       entries of the 2D table the pieces come from, 2..1024 (default 256)\n"
@@ -31,7 +32,8 @@ static const char usage[] =
     "  --threads T          build in T parts on T threads, each building its own pieces (default 1)\n"
     "  --repeat R           time R builds and report the median (default 5)\n"
     "  --json               print one object: size2, table_size, build_ms (median), build_ms_min, threads,\n"
-    "                       table_bytes, lit_bytes, pieces_bytes, max_err_lsb, mean_err_lsb, reference_ms\n";
+    "                       table_bytes, lit_bytes, pieces_bytes, max_err_lsb, mean_err_lsb, reference_ms, and\n"
+    "                       with --lit lit_max_err_lsb, lit_mean_err_lsb\n";
 
 typedef struct part_job {
     const vf_tf_t *tf;
@@ -69,6 +71,25 @@ static double build_once(part_job_t *jobs, int threads, vf_status_t *status)
         if (jobs[t].status != VF_OK)
             *status = jobs[t].status;
     return ms;
+}
+
+/* The largest and mean difference of `values` values an entry (core r, g, b, a order) from the reference's (a, r,
+ * g, b order, by groups of four), in LSB of `bits`-bit values (8: the Q1.15 value rounded to 8 bits). */
+static void against(const uint16_t *core, const double *ref, size_t count, int bits, double *worst, double *mean)
+{
+    *worst = 0, *mean = 0;
+    for (size_t k = 0; k < count; k++) {
+        const double exact = ref[k - k % 4 + (k % 4 + 1) % 4];
+        double got = core[k] / 32768.0, lsb = 1.0 / 32768;
+        if (bits == 8) {
+            got = floor(got * 255 + 0.5) / 255;
+            lsb = 1.0 / 255;
+        }
+        const double d = fabs(got - exact) / lsb;
+        *worst = d > *worst ? d : *worst;
+        *mean += d;
+    }
+    *mean /= (double)count;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -185,20 +206,18 @@ int sim_cmd_tables_order2(int argc, char **argv)
         goto done;
     }
     const double ref_ms = vfp_now_ms() - t0;
-    double worst = 0, mean = 0;
-    for (size_t e = 0; e < entries; e++)
-        for (int c = 0; c < 4; c++) {
-            const double exact = ref[e * 4 + (c + 1) % 4]; /* the reference stores a, r, g, b; the core r, g, b, a */
-            double got = table[e * 4 + c] / 32768.0, lsb = 1.0 / 32768;
-            if (bits == 8) {
-                got = floor(got * 255 + 0.5) / 255; /* an 8-bit table's value, from the Q1.15 one */
-                lsb = 1.0 / 255;
-            }
-            const double d = fabs(got - exact) / lsb;
-            worst = d > worst ? d : worst;
-            mean += d;
+    double worst, mean, lit_worst = 0, lit_mean = 0;
+    against(table, ref, entries * 4, (int)bits, &worst, &mean);
+    if (lit) { /* the lighting values, eight an entry: the reference's in the same order by fours */
+        double *ref_lit = malloc(entries * 8 * sizeof(double));
+        if (!ref_lit || ref_order2_lit_table(ref_tf, (int)count, (int)n, (int)n2, slab_q16 / 65536.0, ref_lit)) {
+            fprintf(stderr, "volfix-sim: the reference's order-2 lighting values failed\n");
+            free(ref_lit);
+            goto done;
         }
-    mean /= (double)entries * 4;
+        against(lit_table, ref_lit, entries * 8, (int)bits, &lit_worst, &lit_mean);
+        free(ref_lit);
+    }
     const size_t value_bytes = bits == 8 ? 1 : 2;
     const size_t table_bytes = entries * 4 * value_bytes, lit_bytes = lit ? 2 * table_bytes : 0;
     const size_t pieces_bytes = (size_t)n * n * 16 * (lit ? 2 : 1);
@@ -206,9 +225,12 @@ int sim_cmd_tables_order2(int argc, char **argv)
         printf("{\"order\": 2, \"size2\": %ld, \"table_size\": %ld, \"preset\": \"%s\", \"slab\": %g, \"bits\": %ld, "
                "\"lit\": %s, \"threads\": %ld, \"repeat\": %ld, \"build_ms\": %.3f, \"build_ms_min\": %.3f, "
                "\"table_bytes\": %zu, \"lit_bytes\": %zu, \"pieces_bytes\": %zu, \"max_err_lsb\": %.3f, "
-               "\"mean_err_lsb\": %.4f, \"reference_ms\": %.1f}\n",
+               "\"mean_err_lsb\": %.4f, \"reference_ms\": %.1f",
                n2, n, tf.name, slab, bits, lit ? "true" : "false", threads, repeat, median, times[0], table_bytes,
                lit_bytes, pieces_bytes, worst, mean, ref_ms);
+        if (lit)
+            printf(", \"lit_max_err_lsb\": %.3f, \"lit_mean_err_lsb\": %.4f", lit_worst, lit_mean);
+        printf("}\n");
     } else {
         printf("order-2 table, %s, %ld^3 entries from a %ld-entry 2D table, slabs of 2 x %g voxels%s\n", tf.name, n2, n,
                slab, lit ? ", lit" : "");
@@ -220,6 +242,8 @@ int sim_cmd_tables_order2(int argc, char **argv)
             printf("  lighting values: %zu bytes more\n", lit_bytes);
         printf("  against the double build (%.0f ms): max %.3f, mean %.4f LSB of %ld-bit values\n", ref_ms, worst,
                mean, bits);
+        if (lit)
+            printf("  its lighting values: max %.3f, mean %.4f LSB\n", lit_worst, lit_mean);
     }
     status = VFP_EXIT_OK;
 done:
