@@ -28,7 +28,7 @@ static const char usage[] =
     "                       mr-brain; the preset button cycles through them all\n"
     "  --tf FILE            start with a transfer-function file (the preset button cycles it and the presets)\n"
     "  --window LO,HI       data values the transfer function's 0..1 spans (default: from the data)\n"
-    "  --mode MODE          point, preint1 (default) or preclass; the mode button cycles them\n"
+    "  --mode MODE          point, preint1 (default), preclass or preint2; the mode button cycles them\n"
     "  --view AZ,EL[,ROLL]  first view in degrees (default 30,20); the reset button comes back to it\n"
     "  --zoom Z             first zoom, 1 fitting the volume (default 1)\n"
     "  --script FILE        knob turns and presses from a file instead of the board's inputs\n"
@@ -115,7 +115,7 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
             for (m = 0; m < VF_MODE_COUNT && !(v && !strcmp(v, vf_mode_name((vf_mode_t)m))); m++)
                 ;
             if (m == VF_MODE_COUNT)
-                return bad(a, v, "point, preint1 or preclass");
+                return bad(a, v, "point, preint1, preclass or preint2");
             o->mode = (vf_mode_t)m;
         } else if (!strcmp(a, "--view")) {
             int n = v ? sscanf(v, "%lf,%lf,%lf", &o->view[0], &o->view[1], &o->view[2]) : 0;
