@@ -191,12 +191,12 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
         if (!n || snprintf(o->board_path, sizeof o->board_path, "%s/%s%s", VFP_BOARD_DIR, o->board, ext) >=
                       (int)sizeof o->board_path) {
             fprintf(stderr, "volfix: --board '%s': expected a board name or a path to a board file\n", o->board);
-            return 2;
+            return VFP_ERR;
         }
         if (access(o->board_path, R_OK) != 0) {
             fprintf(stderr, "volfix: --board %s: no board of that name in %s (a board file's path needs a slash: "
                     "./%s)\n", o->board, VFP_BOARD_DIR, o->board);
-            return 2;
+            return VFP_ERR;
         }
         o->board = o->board_path;
     }
