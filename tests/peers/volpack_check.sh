@@ -26,7 +26,7 @@ fi
 
 # check LIGHT: the comparison for volfix's light LIGHT; sets psnr, shifted
 check() {
-    VOLPACK_LIGHT=$1 BUILD=$build VOLFIX_DATA=$data sh tools/peers/volpack_check.sh "$tmp/side.png" >"$tmp/out" 2>&1 ||
+    CHECK_DIR=$tmp/check VOLPACK_LIGHT=$1 BUILD=$build VOLFIX_DATA=$data sh tools/peers/volpack_check.sh "$tmp/side.png" >"$tmp/out" 2>&1 ||
         { psnr="" shifted=""; return 1; }
     psnr=$(sed -n 's/^PSNR \([0-9.]*\) dB as rendered, \([0-9.]*\) dB after.*/\1/p' "$tmp/out")
     shifted=$(sed -n 's/^PSNR \([0-9.]*\) dB as rendered, \([0-9.]*\) dB after.*/\2/p' "$tmp/out")

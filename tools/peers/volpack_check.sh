@@ -14,7 +14,8 @@
 #
 # Prints the comparison (peer_compare: silhouettes, luminance difference, PSNR as rendered and after the best
 # whole-pixel shift) and writes VolPack | volfix into OUT (default docs/images/volpack-check.png).
-# Usage: tools/peers/volpack_check.sh [OUT.png]   (BUILD, VOLFIX_DATA as for make bench-peers)
+# Usage: tools/peers/volpack_check.sh [OUT.png]   (BUILD, VOLFIX_DATA as for make bench-peers; CHECK_DIR for the
+# files, default $BUILD/peers/check; VOLPACK_LIGHT, volfix's light, default -16.70,16.03)
 cd "$(dirname "$0")/../.." || exit 2
 build=${BUILD:-build}
 data=${VOLFIX_DATA:-../shared/data}
@@ -22,7 +23,7 @@ out_png=${1:-docs/images/volpack-check.png}
 sim=$build/volfix-sim
 peer=$build/peers/volpack_peer
 compare=$build/peers/peer_compare
-dir=$build/peers/check
+dir=${CHECK_DIR:-$build/peers/check} # the two renderings and the comparison
 for f in "$sim" "$peer" "$compare"; do
     [ -x "$f" ] || { echo "volpack-check: $f: not built (run make volpack-check)" >&2; exit 2; }
 done
