@@ -303,7 +303,7 @@ deps:
 
 run: DEPS_FOR = run
 run: deps
-	@$(MAKE) --no-print-directory $(JOBS) all
+	@$(MAKE) --no-print-directory $(JOBS) all $(BUILD)/peers/peer_compare
 	@sh tools/demo.sh
 
 test: DEPS_FOR = test
@@ -591,8 +591,10 @@ $(sort $(DEP_FILES)): ;
 
 # ---- make bench-peers: volfix and VolPack side by side (tools/peers/run.sh, docs/peers.md) ------------------------
 # VolPack and valgrind from apt (tools/deps.sh peers); volfix's VolPack client and image comparer built into
-# $(BUILD)/peers; then the same four scenes rendered by both, timed and counted (5 to 8 minutes, progress on stderr).
-.PHONY: bench-peers peers-deps
+# $(BUILD)/peers; then the same four scenes rendered by both, unlit and lit, timed and counted (10 to 15 minutes,
+# progress on stderr).
+.PHONY: bench-peers peers-deps peers-progs
+peers-progs: $(BUILD)/peers/volpack_peer $(BUILD)/peers/peer_compare
 peers-deps:
 	@sh tools/deps.sh peers
 
@@ -600,10 +602,17 @@ $(BUILD)/peers/volpack_peer: tools/peers/volpack_peer.c | peers-deps
 	@mkdir -p $(@D)
 	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -o $@ $< -lvolpack -lpng -lz -lm
 
-$(BUILD)/peers/peer_compare: tools/peers/peer_compare.c | peers-deps
+# peer_compare needs libpng only: make run uses it too, for its unlit | lit picture
+$(BUILD)/peers/peer_compare: tools/peers/peer_compare.c
 	@mkdir -p $(@D)
-	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -o $@ $< -lpng
+	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -o $@ $< -lpng -lm
 
 bench-peers: $(BUILD)/volfix-sim $(BUILD)/peers/volpack_peer $(BUILD)/peers/peer_compare
 	@BUILD=$(BUILD) VOLFIX_DATA=$(VOLFIX_DATA) sh tools/peers/run.sh
+
+# make volpack-check: VolPack's example image (without depth cueing) and volfix's lit preclass of the same
+# classification side by side in docs/images/volpack-check.png, and their PSNR (tools/peers/volpack_check.sh)
+.PHONY: volpack-check
+volpack-check: $(BUILD)/volfix-sim $(BUILD)/peers/volpack_peer $(BUILD)/peers/peer_compare
+	@BUILD=$(BUILD) VOLFIX_DATA=$(VOLFIX_DATA) sh tools/peers/volpack_check.sh
 # ---- end of make bench-peers ---------------------------------------------------------------------------------------
