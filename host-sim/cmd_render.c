@@ -14,7 +14,9 @@ static const char usage_head[] =
     "                       compare frames across machines; with or without -o\n"
     "  --reference          use the double-precision reference renderer\n"
     "  --truth              use the ground-truth ray caster (trilinear, continuous transfer function, exact\n"
-    "                       integration; --mode, --rays, --partial-slabs and the table options do not apply)\n";
+    "                       integration; --mode, --rays, --partial-slabs and the table options do not apply)\n"
+    "  --truth-filter F     the truth's reconstruction: trilinear (default), smooth (a phantom's own function\n"
+    "                       where it has one, else catmull-rom), catmull-rom, bspline or analytic (unlit only)\n";
 
 int sim_cmd_render(int argc, char **argv)
 {

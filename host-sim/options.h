@@ -22,6 +22,7 @@ typedef struct sim_opts {
     int threads;               /* --threads */
     int reference;             /* --reference: render with the double reference */
     int truth;                 /* --truth (render), --against truth (compare): the ground-truth ray caster */
+    int truth_filter;          /* --truth-filter: the truth's reconstruction, a truth_filter_t (0: trilinear) */
     int have_pixel;            /* --pixel X,Y given */
     double pixel[2];           /* --pixel X,Y: a final-image position */
     const char *out;           /* -o FILE */

@@ -113,17 +113,19 @@ double truth_sample(const ref_volume_t *vol, const double p[3]);
  *   TRUTH_LOOSEST_TOL, for the same error in less time. 0: scalar_tol everywhere.
  * The defaults' own error, against 1/64-voxel steps, a 1e-6 tolerance and steep 0: at most 4e-4 per channel
  * (0.1 of an 8-bit level) and 2e-6 on average on marschner-lobb 41^3 with the sharp preset, 512x512 at 30,20. */
+typedef struct truth_field truth_field_t;
 typedef struct truth_opts {
     double max_step;
     double scalar_tol;
     double steep;
+    const truth_field_t *field; /* the reconstruction (truth_smooth.c); NULL: trilinear */
 } truth_opts_t;
 
 #define TRUTH_MAX_STEP (1.0 / 16.0)
 #define TRUTH_SCALAR_TOL (1.0 / 4096.0)
 #define TRUTH_STEEP 0.2 /* opacity 0 to 1 within 5 levels (the sharp preset's peaks, 2% of the range wide) */
 #define TRUTH_LOOSEST_TOL (1.0 / 16.0)
-#define TRUTH_OPTS_DEFAULT {TRUTH_MAX_STEP, TRUTH_SCALAR_TOL, TRUTH_STEEP}
+#define TRUTH_OPTS_DEFAULT {TRUTH_MAX_STEP, TRUTH_SCALAR_TOL, TRUTH_STEEP, NULL}
 
 /* Integrate the ray through final pixel (px, py): rgba_out = premultiplied r, g, b and opacity A (no
  * background). opts NULL: the defaults above. */
@@ -151,6 +153,66 @@ int truth_lit_init(truth_lit_t *lit, const ref_volume_t *vol, const truth_camera
 /* truth_trace, lit (lit NULL: unlit, truth_trace itself). */
 void truth_trace_lit(const ref_volume_t *vol, const truth_tf_t *tf, const truth_camera_t *cam,
                      const truth_opts_t *opts, const truth_lit_t *lit, double px, double py, truth_acc_t *acc);
+
+/* ---- truth_smooth.c -------------------------------------------------------------------------------------- */
+
+/* Smoother reconstructions than trilinear, for ranking the orders of integration: along an oblique ray a
+ * trilinear field bends only at cell faces and is linear along an axis, which favours order 1; the signal
+ * order 2 is meant to follow is the smooth one the samples came from (docs/algorithm.md, section 8b).
+ *   - TRUTH_FILTER_CATMULL_ROM: the tensor-product Catmull-Rom cubic of the windowed scalars; it interpolates
+ *     (equals every voxel at its grid point) and reproduces quadratics. Outside the volume the ghost samples
+ *     are extrapolated linearly (2 v_0 - v_1), so linear data stays linear up to the faces.
+ *   - TRUTH_FILTER_BSPLINE: the cubic B-spline of the same samples (approximates: at a grid point it is the
+ *     1-4-1 / 6 blend in each axis; reproduces linear data; never leaves the range of its 4^3 samples).
+ *   - TRUTH_FILTER_ANALYTIC: a phantom's own function (truth_phantom_fn) before it was rounded to 8 bits,
+ *     windowed like the voxels and clamped to [0, 255].
+ * The cubic filters' values are clamped to [0, 255] like every scalar. The ray is walked cell by cell as the
+ * trilinear truth walks it; a cell is skipped when the transfer function is clear on a bound of the scalar
+ * there (the range of its 4^3 samples, widened by 0.477 of it for Catmull-Rom, whose negative weights sum to
+ * 0.477 at most in 3D); each sub-step of at most max_step is halved until the scalar at its middle is within
+ * 4 scalar_tol of its chord (relaxed by `steep` as for trilinear), and integrated as two linear pieces.
+ * Lighting is trilinear only (truth_render_lit refuses a field with lighting). */
+typedef enum truth_filter {
+    TRUTH_FILTER_TRILINEAR = 0,
+    TRUTH_FILTER_CATMULL_ROM,
+    TRUTH_FILTER_BSPLINE,
+    TRUTH_FILTER_ANALYTIC,
+    TRUTH_FILTER_SMOOTH, /* only as a request: ANALYTIC for a phantom that has one, else CATMULL_ROM */
+} truth_filter_t;
+
+/* A phantom's raw value (0..255, unrounded) at object index point p of a volume of dims. */
+typedef double (*truth_phantom_fn_t)(const double p[3], const int dims[3]);
+
+struct truth_field {
+    truth_filter_t filter;         /* CATMULL_ROM, BSPLINE or ANALYTIC */
+    const ref_volume_t *vol;
+    truth_phantom_fn_t analytic;   /* ANALYTIC */
+    double win_lo, win_hi;         /* ANALYTIC: the window that maps raw values to scalars */
+    uint8_t *cell_lo, *cell_hi;    /* cubic filters: bounds on the scalar in cell c, (n_a - 1) per axis */
+};
+
+/* The analytic function of phantom:NAME:N (marschner-lobb, sphere, cube), or NULL when NAME has none
+ * (shepp-logan: a sum of ellipsoids with jumps, no smooth signal) or spec is not a phantom. */
+truth_phantom_fn_t truth_phantom_fn(const char *spec);
+
+/* "trilinear", "catmull-rom", "bspline", "analytic", "smooth": 0 and *filter, or -1. */
+int truth_filter_parse(const char *text, truth_filter_t *filter);
+const char *truth_filter_name(truth_filter_t filter);
+
+/* Prepare a field for vol (which must outlive it). phantom_spec: the volume's phantom spec or NULL; win_lo,
+ * win_hi: the window of the raw values (ref_window's). filter SMOOTH resolves as above; TRILINEAR gives a field
+ * with filter TRILINEAR that the truth treats as NULL. Returns 0, -1 on bad arguments or out of memory, -2 for
+ * ANALYTIC on a volume without an analytic function. */
+int truth_field_init(truth_field_t *field, const ref_volume_t *vol, truth_filter_t filter, const char *phantom_spec,
+                     double win_lo, double win_hi);
+void truth_field_free(truth_field_t *field);
+
+/* The field's scalar at object index point p (clamped to the volume), in [0, 255]. */
+double truth_field_sample(const truth_field_t *field, const double p[3]);
+
+/* The field's part of truth_trace: the ray through (px, py) walked through the field. */
+void truth_trace_field(const truth_tf_t *tf, const truth_camera_t *cam, const truth_opts_t *opts, double px,
+                       double py, truth_acc_t *acc);
 
 /* ---- truth_render.c -------------------------------------------------------------------------------------- */
 

@@ -24,6 +24,27 @@ expect_error "bad --against" "--against core: expected reference or truth" compa
 "$sim" compare --help >"$tmp/out" 2>&1 && grep -q -- '--against' "$tmp/out" && ok "compare --help names --against" ||
     fail "compare --help" "no --against"
 
+# the smooth truth: a phantom's function, Catmull-Rom for data without one; unlit; only for the truth
+if "$sim" compare phantom:marschner-lobb:21 --size 48x48 --preset sharp --against truth --truth-filter smooth \
+    --json >"$tmp/smooth" 2>"$tmp/err" &&
+    "$sim" compare phantom:marschner-lobb:21 --size 48x48 --preset sharp --against truth --json >"$tmp/tri" &&
+    ! cmp -s "$tmp/smooth" "$tmp/tri" && grep -q '"psnr_db": [0-9]' "$tmp/smooth"; then
+    ok "compare --truth-filter smooth differs from trilinear"
+else
+    fail "compare --truth-filter smooth" "$(cat "$tmp/err" "$tmp/smooth" | head -n 3 | tr '\n' '|')"
+fi
+"$sim" render phantom:shepp-logan:16 --size 32x32 --truth --truth-filter catmull-rom -o "$tmp/cr.png" \
+    >/dev/null 2>"$tmp/err" && [ -s "$tmp/cr.png" ] && ok "render --truth --truth-filter catmull-rom" ||
+    fail "render --truth-filter catmull-rom" "$(cat "$tmp/err")"
+expect_error "bad --truth-filter" "--truth-filter cubic: expected trilinear, smooth, catmull-rom, bspline or analytic" \
+    render phantom:sphere:8 --truth --truth-filter cubic -o "$tmp/x.png"
+expect_error "--truth-filter without the truth" "--truth-filter: only the ground truth has a filter" \
+    compare phantom:sphere:8 --truth-filter smooth
+expect_error "analytic without a function" "has no analytic function" \
+    render phantom:shepp-logan:8 --truth --truth-filter analytic -o "$tmp/x.png"
+expect_error "smooth truth unlit only" "the lit truth reconstructs trilinearly only" \
+    render phantom:sphere:8 --truth --truth-filter smooth --shade phong -o "$tmp/x.png"
+
 # render the truth
 if "$sim" render phantom:sphere:16 --size 48x40 --truth -o "$tmp/truth.png" >"$tmp/out" 2>"$tmp/err" &&
     [ -s "$tmp/truth.png" ] && grep -q '(ground truth)' "$tmp/out"; then
