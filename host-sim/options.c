@@ -263,7 +263,7 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
                 o->truth = 0;
             else
                 return bad(a, v, "reference or truth");
-        } else if ((groups & (SIM_OPT_TRUTH | SIM_OPT_AGAINST)) && strcmp(a, "--truth-filter") == 0) {
+        } else if ((groups & (SIM_OPT_TRUTH | SIM_OPT_AGAINST | SIM_OPT_FILTER)) && strcmp(a, "--truth-filter") == 0) {
             truth_filter_t filter;
             if (truth_filter_parse(v, &filter))
                 return bad(a, v, "trilinear, smooth, catmull-rom, bspline or analytic");
@@ -309,7 +309,7 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
         fprintf(stderr, "volfix-sim: no volume given (see --help)\n");
         return VFP_ERR;
     }
-    if (o->truth_filter != TRUTH_FILTER_TRILINEAR && !o->truth) {
+    if (o->truth_filter != TRUTH_FILTER_TRILINEAR && !o->truth && !(groups & SIM_OPT_FILTER)) {
         fprintf(stderr, "volfix-sim: --truth-filter: only the ground truth has a filter (add %s)\n",
                 (groups & SIM_OPT_AGAINST) ? "--against truth" : "--truth");
         return VFP_ERR;

@@ -48,6 +48,7 @@ enum {
     SIM_OPT_PIXEL = 512,  /* --pixel X,Y */
     SIM_OPT_HASH = 1024,  /* --hash */
     SIM_OPT_ROUNDS = 2048, /* --rounds */
+    SIM_OPT_FILTER = 4096, /* --truth-filter for a command that always uses the truth's reconstruction (ray) */
 };
 
 /* Parse argv (after the command name). Returns VFP_OK, VFP_HELP_SHOWN when --help was asked (usage printed), or

@@ -44,13 +44,16 @@ cthead:$data/cthead.nhdr:1
 ml64:phantom:marschner-lobb:64:1"
 views="30,20 135,70"
 [ $quick = 1 ] && { scenes="ml41:phantom:marschner-lobb:41:0"; views="30,20"; }
-# the configurations: label and core options (equal slice count: every mode composites every slice)
+# the configurations: label and core options (equal slice count: every mode composites every slice; -r4: 4 x 4
+# rays per voxel column, which lifts the one-ray-per-column floor shared by all orders)
 configs="point|--mode point
 preint1-64|--mode preint1 --table-size 64
 preint1-128|--mode preint1 --table-size 128
 preint1-256|--mode preint1
 preint2-64|--mode preint2 --table2-size 64
-preint2-128|--mode preint2 --table2-size 128"
+preint2-128|--mode preint2 --table2-size 128
+preint1-64-r4|--mode preint1 --table-size 64 --rays 4
+preint2-64-r4|--mode preint2 --table2-size 64 --rays 4"
 
 csv=$out/orders.csv
 echo "scene,held_back,view,config,truth,psnr_db,xi" >"$csv"

@@ -247,16 +247,29 @@ typedef struct truth_study {
     int k_axis, k_flip; /* the principal axis as ref_factor chooses it */
     double slab;        /* world length of one unit of k (ref_factor's slab length d) */
     double xi[3][2];    /* xi[order][spacing - 1] = integral over [k_a, k_b] of |signal - reconstruction| dk */
+    /* The renderers' own segments (docs/algorithm.md sections 4 and 8): point and preint1 as order 0 and 1 at
+     * spacing 1; preint2's slabs start on even standard slices (k = 0, 2, ...), each the quadratic through its
+     * three samples clamped to their range, and a volume with n_k - 1 odd ends in one order-1 slab. Compared on
+     * [r_a, r_b], the whole slabs of preint2 inside the ray's slices (also its last order-1 slab, when the ray
+     * reaches the last slice). xi_r[0..2] = point, preint1, preint2 there. */
+    double r_a, r_b;
+    double xi_r[3];
     /* the signal and the reconstructions on a grid of `per_voxel` points per unit of k over [k_in, k_out]:
-     * rows of 8 values t, signal, order0_1, order1_1, order2_1, order0_2, order1_2, order2_2 (NaN where a
-     * reconstruction is not defined) */
+     * rows of TRUTH_STUDY_COLS values t, signal, order0_1, order1_1, order2_1, order0_2, order1_2, order2_2,
+     * preint2 (NaN where a reconstruction is not defined) */
     int rows;
     double *table;
 } truth_study_t;
+#define TRUTH_STUDY_COLS 9
 
-/* Returns 0, 1 when the ray misses the volume or crosses too few slices for a spacing-2 order-2 slab, or -1. */
+/* Returns 0, 1 when the ray misses the volume or crosses too few slices for a spacing-2 order-2 slab, or -1.
+ * field: the signal's reconstruction (truth_smooth.c), NULL or trilinear: trilinear; the samples on the slices
+ * are the field's too (a renderer samples the data bilinearly in a slice: against a smooth field the samples
+ * are where the smooth signal is, which isolates the error along the ray). */
 int truth_study_ray(const ref_volume_t *vol, const ref_view_t *view, int out_w, int out_h, double px, double py,
                     int per_voxel, truth_study_t *study);
+int truth_study_ray_field(const ref_volume_t *vol, const truth_field_t *field, const ref_view_t *view, int out_w,
+                          int out_h, double px, double py, int per_voxel, truth_study_t *study);
 void truth_study_free(truth_study_t *study);
 
 #endif /* TRUTH_H */

@@ -60,7 +60,7 @@ expect_error "compare takes no --truth" "--truth: unknown option" compare phanto
 dir="$tmp/ray"
 if "$sim" ray phantom:marschner-lobb:41 --size 128x128 -o "$dir" >"$tmp/out" 2>"$tmp/err"; then
     rows=$(wc -l <"$dir/ray.csv")
-    if [ "$(head -n 1 "$dir/ray.csv")" != "t,signal,order0_1,order1_1,order2_1,order0_2,order1_2,order2_2" ] ||
+    if [ "$(head -n 1 "$dir/ray.csv")" != "t,signal,order0_1,order1_1,order2_1,order0_2,order1_2,order2_2,preint2" ] ||
         [ "$rows" -lt 2000 ]; then
         fail "ray: ray.csv" "header '$(head -n 1 "$dir/ray.csv")', $rows lines"
     else
@@ -85,6 +85,37 @@ if "$sim" ray phantom:marschner-lobb:41 --size 128x128 -o "$dir" >"$tmp/out" 2>"
     fi
 else
     fail "ray" "status $?: $(cat "$tmp/err")"
+fi
+
+# preint2's own segments over the smooth signal (Marschner-Lobb's function): the renderers' xi rank point >
+# preint1 > preint2 there, and at k = 2m + 1/2 the segment is the quadratic through the samples of slices 2m,
+# 2m + 1, 2m + 2 (the renderer pairs slices from even k), clamped to their range
+dir="$tmp/rays"
+if "$sim" ray phantom:marschner-lobb:41 --size 128x128 --truth-filter smooth -o "$dir" >"$tmp/out" 2>"$tmp/err" &&
+    grep -q 'smooth signal' "$tmp/out" && [ "$(head -n 1 "$dir/renderers.csv")" = "renderer,k_from,k_to,xi" ]; then
+    if awk -F, 'NR > 1 { xi[$1] = $4 } END { exit !(xi["preint2"] < xi["preint1"] && xi["preint1"] < xi["point"]) }' \
+        "$dir/renderers.csv"; then
+        ok "ray: the renderers' xi on the smooth signal, preint2 < preint1 < point"
+    else
+        fail "ray: renderers' xi" "$(tr '\n' '|' <"$dir/renderers.csv")"
+    fi
+    if awk -F, 'NR == 2 { ra = $1 } NR > 1 && $9 != "nan" {
+            k = $1 + 0; if (k == int(k)) s[k] = $2; if (k - int(k) == 0.5) half[k] = $9 }
+        END { n = 0
+            for (k in half) { m = int(k); if (m % 2) continue
+                f = s[m]; mid = s[m + 1]; b = s[m + 2]; if (b == "") continue
+                A = 2 * f - 4 * mid + 2 * b; B = -3 * f + 4 * mid - b; t = 0.25; p = (A * t + B) * t + f
+                lo = f; if (mid < lo) lo = mid; if (b < lo) lo = b; hi = f; if (mid > hi) hi = mid; if (b > hi) hi = b
+                if (p < lo) p = lo; if (p > hi) p = hi
+                d = p - half[k]; if (d < 0) d = -d; if (d > 1e-3) { print "k " k ": " half[k] " not " p; exit 1 }
+                n++ }
+            exit !(n >= 10) }' "$dir/ray.csv"; then
+        ok "ray: preint2 segments are the even-paired clamped quadratics"
+    else
+        fail "ray: preint2 segments" "not the renderer's slabs"
+    fi
+else
+    fail "ray --truth-filter smooth" "$(cat "$tmp/err")"
 fi
 
 # without gnuplot: one line saying so, the CSVs all the same, status 0
