@@ -161,14 +161,14 @@ static vfp_status_t write_outputs(study_t *st, const row_t *rows, int nrows, cha
                                  "against the reference (fixed-point error; 50 dB)");
             fprintf(f, "plot ");
             for (int b = 0; b < NBITS; b++)
-                fprintf(f, "%s'order2.csv' using ($1 eq '%s' && $2 eq 'preint2' && $4 == %u && $5 == 256 ? $3 : 1/0):%d "
+                fprintf(f, "%s'order2.csv' using (strcol(1) eq '%s' && strcol(2) eq 'preint2' && $4 == %u && $5 == 256 ? $3 : 1/0):%d "
                            "with linespoints title '%u-bit'", b ? ", " : "", label, bits[b], col, bits[b]);
-            fprintf(f, ", 'order2.csv' using ($1 eq '%s' && $2 eq 'preint2' && $4 == 16 && $5 == 64 ? $3 : 1/0):%d "
+            fprintf(f, ", 'order2.csv' using (strcol(1) eq '%s' && strcol(2) eq 'preint2' && $4 == 16 && $5 == 64 ? $3 : 1/0):%d "
                        "with linespoints dt 4 title '16-bit, pieces N 64'", label, col);
             if (panel == 0)
-                fprintf(f, ", 'order2.csv' using ($1 eq '%s' && $2 eq 'preint1' && $3 == 64 ? 16 : 1/0):10:(112):(0) "
+                fprintf(f, ", 'order2.csv' using (strcol(1) eq '%s' && strcol(2) eq 'preint1' && $3 == 64 ? 16 : 1/0):10:(112):(0) "
                            "with vectors nohead dt 2 lc rgb 'gray' title 'preint1 64', "
-                           "'order2.csv' using ($1 eq '%s' && $2 eq 'preint1' && $3 == 256 ? 16 : 1/0):10:(112):(0) "
+                           "'order2.csv' using (strcol(1) eq '%s' && strcol(2) eq 'preint1' && $3 == 256 ? 16 : 1/0):10:(112):(0) "
                            "with vectors nohead dt 3 lc rgb 'black' title 'preint1 256'\n", label, label);
             else if (panel == 2)
                 fprintf(f, ", 50 with lines dt 2 lc rgb 'red' title '50 dB'\n");
