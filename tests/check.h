@@ -35,6 +35,13 @@ static inline uint32_t check_below(uint64_t *state, uint32_t n)
     return (uint32_t)((check_rand64(state) >> 33) % n);
 }
 
+/* check_mod: one in [0, n) from the low bits, the draw the older core suites' random cases come from (their
+ * measured bounds are for those cases, so they keep it). */
+static inline uint32_t check_mod(uint64_t *state, uint32_t n)
+{
+    return (uint32_t)(check_rand64(state) % n);
+}
+
 /* A sample volume: NAME in the folder $VOLFIX_DATA (make test sets it; the Makefile names the default). Writes
  * its path into path and returns path; when the variable is unset or the file is not there, writes why instead
  * (naming VOLFIX_DATA) and returns NULL, for the test to fail with. */

@@ -30,16 +30,9 @@
 #include "tables.h"
 
 static uint64_t rng_state = 0xB7E151628AED2A6Bu;
-static uint64_t rnd64(void)
-{
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return rng_state * 0x2545F4914F6CDD1Du;
-}
 static uint32_t rnd(uint32_t n)
 {
-    return (uint32_t)(rnd64() % n);
+    return check_mod(&rng_state, n);
 }
 
 /* Room for classification, scratch and tables of up to 1024 entries (the 2D table: 8 MiB). */
@@ -395,7 +388,7 @@ static void entry_of_sample_exact(void)
         memset(&cls, 0, sizeof cls);
         cls.n = n;
         for (int t = 0; t < 200000; t++) {
-            uint64_t s = rnd64() % (top + 1);
+            uint64_t s = check_rand64(&rng_state) % (top + 1);
             CHECK_MSG(vfi_entry_of_sample(&cls, s) == exact_entry(s, n), "N %u sample %llu", n,
                       (unsigned long long)s);
         }

@@ -19,10 +19,7 @@
 static uint64_t rng_state = 0x243F6A8885A308D3u;
 static uint64_t rnd64(void)
 {
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return rng_state * 0x2545F4914F6CDD1Du;
+    return check_rand64(&rng_state);
 }
 
 static const uint8_t dummy_voxel = 0;

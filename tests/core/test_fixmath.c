@@ -23,10 +23,7 @@
 static uint64_t rng_state = 0x9E3779B97F4A7C15u;
 static uint64_t rnd64(void)
 {
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return rng_state * 0x2545F4914F6CDD1Du;
+    return check_rand64(&rng_state);
 }
 
 /* A 64-bit value with a random number of significant bits, so that small and large magnitudes both occur. */

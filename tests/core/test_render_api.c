@@ -14,16 +14,9 @@
 #include "volfix_internal.h"
 
 static uint64_t rng_state = 0xA4093822299F31D0u;
-static uint64_t rnd64(void)
-{
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return rng_state * 0x2545F4914F6CDD1Du;
-}
 static uint32_t rnd(uint32_t n)
 {
-    return (uint32_t)(rnd64() % n);
+    return check_mod(&rng_state, n);
 }
 
 /* ---- scenes ----------------------------------------------------------------------------------------- */
