@@ -17,6 +17,7 @@
 #include "check.h"
 #include "frame.h"
 #include "ref/ref.h"
+#include "scene.h"
 #include "render/render_mt.h"
 #include "io/volume.h"
 #include "volfix.h"
@@ -308,13 +309,8 @@ static vf_status_t frame(int k, const vf_params_t *p, const vf_volume_t *vol, co
                          const vf_view_t *view, bool general, uint16_t *out, size_t *values, uint32_t *nk)
 {
     vf_arena_t arena;
-    vf_arena_init(&arena, arena_buf[k], sizeof arena_buf[k]);
     vf_renderer_t *r;
-    vf_status_t s = vf_renderer_create(&r, p, vol, &arena);
-    if (s == VF_OK)
-        s = vf_renderer_set_window(r, (vf_window_t){0, 255});
-    if (s == VF_OK)
-        s = vf_renderer_set_tf(r, tf);
+    vf_status_t s = scene_renderer(&r, &arena, arena_buf[k], sizeof arena_buf[k], p, vol, tf);
     if (s == VF_OK && p->lighting) { /* a light from the right and, every other frame, gradient opacity */
         vf_lighting_t l;
         vf_lighting_default(&l);

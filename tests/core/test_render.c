@@ -15,82 +15,9 @@
 
 #include "check.h"
 #include "frame.h"
+#include "render_scene.h"
 #include "volfix.h"
 #include "volfix_internal.h"
-
-static uint64_t rng_state = 0xA4093822299F31D0u;
-static uint32_t rnd(uint32_t n)
-{
-    return check_mod(&rng_state, n);
-}
-
-/* ---- scenes ----------------------------------------------------------------------------------------- */
-
-#define MAXD 20
-static uint8_t vox[300 * 3 * 2 * 2 + MAXD * MAXD * MAXD];
-static _Alignas(16) unsigned char arena_buf[1 << 22];
-static _Alignas(16) unsigned char scratch[1 << 20];
-static unsigned char pixels[3][200 * 200 * 4];
-
-typedef struct scene {
-    vf_volume_t vol;
-    vf_params_t params;
-    vf_arena_t arena;
-    vf_renderer_t *r;
-} scene_t;
-
-static vf_volume_t volume_of(uint32_t nx, uint32_t ny, uint32_t nz)
-{
-    vf_volume_t v = {{nx, ny, nz}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
-    return v;
-}
-
-static void fill_random(const vf_volume_t *v)
-{
-    uint32_t nx = v->dims[0], ny = v->dims[1], nz = v->dims[2];
-    int cx = (int)rnd(nx), cy = (int)rnd(ny), cz = (int)rnd(nz), rad = 2 + (int)rnd(6);
-    for (uint32_t z = 0; z < nz; z++)
-        for (uint32_t y = 0; y < ny; y++)
-            for (uint32_t x = 0; x < nx; x++) {
-                int d2 = ((int)x - cx) * ((int)x - cx) + ((int)y - cy) * ((int)y - cy) + ((int)z - cz) * ((int)z - cz);
-                uint32_t val = (d2 < rad * rad ? 180 : 30) + rnd(50);
-                if (rnd(12) == 0)
-                    val = rnd(256);
-                vox[((size_t)z * ny + y) * nx + x] = (uint8_t)val;
-            }
-}
-
-static vf_tf_point_t tf_pts[8];
-
-static vf_tf_t random_tf(void)
-{
-    uint32_t count = 1 + rnd(6), s = rnd(50000);
-    for (uint32_t p = 0; p < count; p++) {
-        if (p)
-            s += rnd(15000);
-        uint32_t k = rnd(5);
-        tf_pts[p] = (vf_tf_point_t){(uint16_t)(s > 65280 ? 65280 : s), (uint16_t)rnd(65536), (uint16_t)rnd(65536),
-                                    (uint16_t)rnd(65536),
-                                    (uint16_t)(k == 0 ? 0 : k == 1 ? 65535 : k == 2 ? rnd(2000) : rnd(65536))};
-    }
-    return (vf_tf_t){tf_pts, count};
-}
-
-static vf_status_t scene_create(scene_t *s, vf_mode_t mode, uint32_t table_size)
-{
-    vf_params_default(&s->params);
-    s->params.mode = mode;
-    s->params.table_size = table_size;
-    vf_arena_init(&s->arena, arena_buf, sizeof arena_buf);
-    s->r = NULL;
-    return vf_renderer_create(&s->r, &s->params, &s->vol, &s->arena);
-}
-
-static vf_image_t image_of(int n, uint32_t w, uint32_t h, vf_format_t format)
-{
-    vf_image_t im = {pixels[n], w, h, w * vf_format_bytes(format), format};
-    return im;
-}
 
 /* ---- section 4, directly ------------------------------------------------------------------------------ */
 
@@ -223,11 +150,6 @@ static double warp_spec(const scene_t *s, const uint16_t *inter, uint32_t x, uin
 
 /* ---- render a random scene and compare ------------------------------------------------------------- */
 
-static size_t scratch_for(const scene_t *s)
-{
-    return vf_renderer_band_scratch_bytes(s->r, s->vol.dims[0] + s->vol.dims[1] + s->vol.dims[2]);
-}
-
 /* view_kind: 0 random, 1 multiples of 90 degrees (no shear), 2 multiples of 45 degrees (shears of exactly 0
  * and +-1, and principal-axis ties) */
 static void scene_once(vf_mode_t mode, uint32_t table_size, int view_kind, const uint32_t dims[3])
@@ -245,7 +167,7 @@ static void scene_once(vf_mode_t mode, uint32_t table_size, int view_kind, const
     for (int c = 0; c < 3; c++)
         s.params.background[c] = 0;
     vf_tf_t tf = random_tf();
-    if (vf_renderer_set_window(s.r, (vf_window_t){0, 255}) != VF_OK || vf_renderer_set_tf(s.r, &tf) != VF_OK) {
+    if (scene_ready(&s, &tf) != VF_OK) {
         check_fail(__FILE__, __LINE__, "window / tf");
         return;
     }
@@ -353,8 +275,7 @@ static void constant_volume_closed_form(void)
         CHECK_EQ(scene_create(&s, m ? VF_MODE_PREINT1 : VF_MODE_POINT, 256), VF_OK);
         vf_tf_point_t p = {100 * 256, 52428, 26214, 13107, 19661}; /* c = (0.8, 0.4, 0.2), a0 = 0.3 */
         vf_tf_t tf = {&p, 1};
-        CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-        CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
+        CHECK_EQ(scene_ready(&s, &tf), VF_OK);
         /* 4x4 output: scale = zoom * 4 / (3 sqrt 3) = 1 for zoom = 3 sqrt(3) / 4: a near-identity warp */
         vf_view_t view = {0, 0, 0, (uint32_t)lround(3 * sqrt(3) / 4 * 65536)};
         vf_image_t im = image_of(0, 4, 4, VF_FORMAT_RGB888);
@@ -389,8 +310,7 @@ static void early_termination(void)
     CHECK_EQ(scene_create(&s, VF_MODE_POINT, 256), VF_OK);
     vf_tf_point_t p = {0, 65535, 0, 0, 40000};
     vf_tf_t tf = {&p, 1};
-    CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-    CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
+    CHECK_EQ(scene_ready(&s, &tf), VF_OK);
     vf_view_t view = {0, 0, 0, 65536};
     vf_image_t im = image_of(0, 8, 8, VF_FORMAT_RGB888);
     CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
@@ -420,8 +340,7 @@ static void invisible_volume_background(void)
         CHECK_EQ(vf_renderer_create(&s.r, &s.params, &s.vol, &s.arena), VF_OK);
         vf_tf_point_t p[2] = {{0, 65535, 65535, 65535, 0}, {65280, 65535, 65535, 65535, 0}};
         vf_tf_t tf = {p, 2};
-        CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-        CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
+        CHECK_EQ(scene_ready(&s, &tf), VF_OK);
         vf_memory_t mem;
         vf_renderer_memory(s.r, &mem);
         CHECK(mem.runs <= 3 * (4 * (10 * 7 * 5) + 64)); /* the row index and one spare value per axis, no pairs */
@@ -445,8 +364,7 @@ static void point_vs_preint1_constant_tf(void)
         CHECK_EQ(scene_create(&s, m ? VF_MODE_PREINT1 : VF_MODE_POINT, 256), VF_OK);
         vf_tf_point_t p = {0, 30000, 40000, 50000, 9000};
         vf_tf_t tf = {&p, 1};
-        CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-        CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
+        CHECK_EQ(scene_ready(&s, &tf), VF_OK);
         vf_view_t view = {0, 0, 0, 65536};
         vf_image_t im = image_of(0, 16, 16, VF_FORMAT_RGB888);
         CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
@@ -474,8 +392,7 @@ static void bands_are_deterministic(void)
         fill_random(&s.vol);
         CHECK_EQ(scene_create(&s, t % 2 ? VF_MODE_PREINT1 : VF_MODE_POINT, 256), VF_OK);
         vf_tf_t tf = random_tf();
-        CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-        CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
+        CHECK_EQ(scene_ready(&s, &tf), VF_OK);
         vf_view_t view = {(int32_t)rnd(65536), (int32_t)rnd(65536), (int32_t)rnd(65536), 65536};
         uint32_t w = 40, h = 33;
         vf_image_t ref = image_of(0, w, h, VF_FORMAT_RGB888);
@@ -572,8 +489,7 @@ static void output_formats(void)
         vf_arena_init(&s.arena, arena_buf, sizeof arena_buf);
         CHECK_EQ(vf_renderer_create(&s.r, &s.params, &s.vol, &s.arena), VF_OK);
         vf_tf_t tf = random_tf();
-        CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-        CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
+        CHECK_EQ(scene_ready(&s, &tf), VF_OK);
         vf_view_t view = {(int32_t)rnd(65536), (int32_t)rnd(65536), (int32_t)rnd(65536), 65536};
         uint32_t w = 31, h = 29;
         vf_image_t rgb = image_of(0, w, h, VF_FORMAT_RGB888);
@@ -618,8 +534,7 @@ static void identity_warp(void)
     CHECK_EQ(vf_renderer_create(&s.r, &s.params, &s.vol, &s.arena), VF_OK);
     vf_tf_t tf = random_tf();
     tf_pts[0].a = 3000;
-    CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-    CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
+    CHECK_EQ(scene_ready(&s, &tf), VF_OK);
     vf_view_t view = {0, 0, 0, 65536};
     vf_image_t im = image_of(0, 21, 21, VF_FORMAT_RGB888);
     CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
@@ -660,8 +575,7 @@ static void shear_beyond_one_skips_visible(void)
     CHECK_EQ(scene_create(&s, VF_MODE_PREINT1, 256), VF_OK);
     vf_tf_point_t p[3] = {{120 * 256, 0, 0, 0, 0}, {128 * 256, 65535, 65535, 65535, 65535}, {136 * 256, 0, 0, 0, 0}};
     vf_tf_t tf = {p, 3};
-    CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-    CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
+    CHECK_EQ(scene_ready(&s, &tf), VF_OK);
     vf_view_t view = {4593, -7670, 0, 65536};
     vf_image_t im = image_of(0, 32, 32, VF_FORMAT_RGB888);
     CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
