@@ -6,7 +6,7 @@
 #ifndef TESTS_CORE_RENDER_SCENE_H
 #define TESTS_CORE_RENDER_SCENE_H
 
-#include "scene.h"
+#include "scene_fixture.h"
 
 #define MAXD 20
 static uint64_t rng_state = 0xA4093822299F31D0u;

@@ -17,7 +17,7 @@
 
 #include "check.h"
 #include "frame.h"
-#include "scene.h"
+#include "scene_fixture.h"
 #include "segment.h"
 #include "volfix_internal.h"
 

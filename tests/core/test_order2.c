@@ -17,7 +17,7 @@
 #include "check.h"
 #include "frame.h"
 #include "ref/ref.h"
-#include "scene.h"
+#include "scene_fixture.h"
 #include "render/render_mt.h"
 #include "io/volume.h"
 #include "volfix.h"

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "scene.h"
+#include "scene_fixture.h"
 #include "volfix.h"
 #include "volfix_internal.h"
 
