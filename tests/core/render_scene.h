@@ -6,6 +6,7 @@
 #ifndef TESTS_CORE_RENDER_SCENE_H
 #define TESTS_CORE_RENDER_SCENE_H
 
+#include "check.h"
 #include "scene_fixture.h"
 
 #define MAXD 20

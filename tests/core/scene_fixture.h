@@ -1,8 +1,9 @@
 /*
  * scene_fixture.h: what the core suites build their frames from: a ball in noise, a random transfer function,
  * and a renderer over a caller's arena buffer with the identity window and a transfer function set. Header-only
- * and static inline, as frame.h is, so that each suite stays one file. Every random draw comes from the suite's
- * own generator and seed (check_mod or check_below, check.h), so that each suite keeps its own cases.
+ * and static inline, as frame.h is, so that each suite stays one file; it needs only the core's header, so that
+ * small_config.c, built outside the test framework, can use it too. Every random draw comes from the suite's own
+ * generator and seed (check_mod or check_below, check.h), so that each suite keeps its own cases.
  */
 #ifndef TESTS_CORE_SCENE_FIXTURE_H
 #define TESTS_CORE_SCENE_FIXTURE_H
@@ -10,7 +11,6 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "check.h"
 #include "volfix.h"
 
 /* One value in [0, n) from *state: check_mod or check_below. */

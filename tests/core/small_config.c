@@ -11,6 +11,7 @@
 #include <stdio.h>
 
 #include "frame.h"
+#include "scene_fixture.h"
 #include "volfix.h"
 
 #define NX 21
@@ -51,13 +52,7 @@ static uint64_t fnv1a(const unsigned char *p, size_t n)
 
 static vf_status_t create(const vf_params_t *p, vf_arena_t *arena, vf_renderer_t **r)
 {
-    vf_arena_init(arena, arena_buf, sizeof arena_buf);
-    vf_status_t s = vf_renderer_create(r, p, &volume, arena);
-    if (s == VF_OK)
-        s = vf_renderer_set_window(*r, (vf_window_t){0, 255});
-    if (s == VF_OK)
-        s = vf_renderer_set_tf(*r, &tf);
-    return s;
+    return scene_renderer(r, arena, arena_buf, sizeof arena_buf, p, &volume, &tf);
 }
 
 /* A frame of renderer r and its hash, else 0. */
