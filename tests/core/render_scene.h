@@ -77,4 +77,11 @@ static inline size_t scratch_for(const scene_t *s)
     return vf_renderer_band_scratch_bytes(s->r, s->vol.dims[0] + s->vol.dims[1] + s->vol.dims[2]);
 }
 
+/* Draws the scene's frame of view into image n, w x h RGB888. */
+static inline vf_status_t scene_draw(const scene_t *s, const vf_view_t *view, int n, uint32_t w, uint32_t h)
+{
+    vf_image_t im = image_of(n, w, h, VF_FORMAT_RGB888);
+    return vf_renderer_draw(s->r, view, &im, scratch, scratch_for(s));
+}
+
 #endif

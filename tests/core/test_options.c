@@ -51,6 +51,29 @@ static vf_tf_t random_tf(void)
     return scene_random_tf(tf_pts, &style, check_mod, &rng_state);
 }
 
+/* A volume of 2..MAXD voxels a side over vox, unit spacing, not yet filled. */
+static vf_volume_t random_dims(void)
+{
+    vf_volume_t vol = {{2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1)}, {65536, 65536, 65536},
+                       VF_VOXEL_U8, vox};
+    return vol;
+}
+
+/* A frame of vol with p, tf and view drawn by a fresh renderer into out, 64 x 48 RGB888; *slab_q16 its slab. */
+static vf_status_t draw_fresh(unsigned char *out, const vf_params_t *p, const vf_volume_t *vol, const vf_tf_t *tf,
+                              const vf_view_t *view, uint32_t *slab_q16)
+{
+    vf_arena_t arena;
+    vf_renderer_t *r;
+    vf_status_t s = scene_renderer(&r, &arena, arena_buf, sizeof arena_buf, p, vol, tf);
+    vf_image_t im = {out, 64, 48, 64 * 3, VF_FORMAT_RGB888};
+    if (s == VF_OK)
+        s = vf_renderer_draw(r, view, &im, scratch, sizeof scratch);
+    if (s == VF_OK)
+        *slab_q16 = vf_renderer_factor(r)->slab_q16;
+    return s;
+}
+
 /* Standard voxel (i, j) of standard slice k, i and j clamped to the slice (the padding repeats the edge). */
 static uint32_t standard(const vf_volume_t *v, const vf_factor_t *f, uint32_t i, uint32_t j, uint32_t k)
 {
@@ -179,8 +202,7 @@ static const char *describe(const vf_params_t *p)
 
 static void one_scene(const vf_params_t *params)
 {
-    vf_volume_t vol = {{2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1)}, {65536, 65536, 65536},
-                       VF_VOXEL_U8, vox};
+    vf_volume_t vol = random_dims();
     if (rnd(3) == 0)
         for (int a = 0; a < 3; a++)
             vol.spacing_q16[a] = 40000 + rnd(3 * 65536);
@@ -263,18 +285,14 @@ static void buffers_identical(void)
         vf_params_t p;
         vf_params_default(&p);
         p.lookup = t % 2 ? VF_LOOKUP_BILINEAR : VF_LOOKUP_NEAREST;
-        vf_volume_t vol = {{2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1)}, {65536, 65536, 65536},
-                           VF_VOXEL_U8, vox};
+        vf_volume_t vol = random_dims();
         fill_random(&vol);
         vf_tf_t tf = random_tf();
         vf_view_t view = {(int32_t)rnd(65536), (int32_t)rnd(65536), (int32_t)rnd(65536), 65536};
         for (int b = 0; b < 2; b++) {
             p.buffer = b ? VF_BUFFER_IMAGE : VF_BUFFER_SLICE;
-            vf_arena_t arena;
-            vf_renderer_t *r;
-            CHECK_EQ(scene_renderer(&r, &arena, arena_buf, sizeof arena_buf, &p, &vol, &tf), VF_OK);
-            vf_image_t im = {pixels[b], 64, 48, 64 * 3, VF_FORMAT_RGB888};
-            CHECK_EQ(vf_renderer_draw(r, &view, &im, scratch, sizeof scratch), VF_OK);
+            uint32_t slab;
+            CHECK_EQ(draw_fresh(pixels[b], &p, &vol, &tf, &view, &slab), VF_OK);
         }
         CHECK(memcmp(pixels[0], pixels[1], 64 * 48 * 3) == 0);
     }
@@ -289,20 +307,16 @@ static void lut_at_unit_slab(void)
         vf_params_t p;
         vf_params_default(&p);
         p.mode = t % 3 == 0 ? VF_MODE_POINT : t % 3 == 1 ? VF_MODE_PREINT1 : VF_MODE_PRECLASS;
-        vf_volume_t vol = {{2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1)}, {65536, 65536, 65536},
-                           VF_VOXEL_U8, vox};
+        vf_volume_t vol = random_dims();
         fill_random(&vol);
         vf_tf_t tf = random_tf();
         tf_pts[0].a = 20000;
         vf_view_t view = {(int32_t)rnd(4) * 16384, 0, 0, 65536};
         for (int c = 0; c < 2; c++) {
             p.correction = c ? VF_CORRECTION_LUT : VF_CORRECTION_REBUILD;
-            vf_arena_t arena;
-            vf_renderer_t *r;
-            CHECK_EQ(scene_renderer(&r, &arena, arena_buf, sizeof arena_buf, &p, &vol, &tf), VF_OK);
-            vf_image_t im = {pixels[c], 64, 48, 64 * 3, VF_FORMAT_RGB888};
-            CHECK_EQ(vf_renderer_draw(r, &view, &im, scratch, sizeof scratch), VF_OK);
-            CHECK_EQ(vf_renderer_factor(r)->slab_q16, 65536);
+            uint32_t slab;
+            CHECK_EQ(draw_fresh(pixels[c], &p, &vol, &tf, &view, &slab), VF_OK);
+            CHECK_EQ(slab, 65536);
         }
         for (size_t e = 0; e < 64 * 48 * 3; e++)
             CHECK_MSG(abs((int)pixels[0][e] - (int)pixels[1][e]) <= 2, "%s: pixel %zu channel %zu: rebuild %u, lut %u",

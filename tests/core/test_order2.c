@@ -304,6 +304,15 @@ static vf_volume_t random_volume(void)
     return (vf_volume_t){{n[0], n[1], n[2]}, {65536, 65536, 65536 + 30000 * check_below(&seed, 2)}, VF_VOXEL_U8, vox};
 }
 
+/* The defaults in preint2. */
+static vf_params_t preint2_params(void)
+{
+    vf_params_t p;
+    vf_params_default(&p);
+    p.mode = VF_MODE_PREINT2;
+    return p;
+}
+
 /* A frame's intermediate image (copied into out), with the general loops or not, lit or not. */
 static vf_status_t frame(int k, const vf_params_t *p, const vf_volume_t *vol, const vf_tf_t *tf, bool lit,
                          const vf_view_t *view, bool general, uint16_t *out, size_t *values, uint32_t *nk)
@@ -343,9 +352,7 @@ static void general_equals_default(void)
         const vf_volume_t vol = random_volume();
         uint32_t count;
         const vf_tf_t tf = random_tf(&count);
-        vf_params_t p;
-        vf_params_default(&p);
-        p.mode = VF_MODE_PREINT2;
+        vf_params_t p = preint2_params();
         p.table_size = n % 3 ? 256 : 100;
         p.table2_size = 16 + check_below(&seed, 40);
         p.buffer = n % 2 ? VF_BUFFER_IMAGE : VF_BUFFER_SLICE;
@@ -373,9 +380,7 @@ static void threads_identical(void)
         const vf_volume_t vol = random_volume();
         uint32_t count;
         const vf_tf_t tf = random_tf(&count);
-        vf_params_t p;
-        vf_params_default(&p);
-        p.mode = VF_MODE_PREINT2;
+        vf_params_t p = preint2_params();
         p.table2_size = 24 + 8 * (uint32_t)n;
         p.lighting = n % 2 == 1;
         p.correction = n == 4 ? VF_CORRECTION_LUT : VF_CORRECTION_REBUILD;
@@ -415,9 +420,7 @@ static void last_slab_composited(void)
         const vf_volume_t vol = {{8, 8, nz}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
         vf_tf_point_t pts[2] = {{0, 0, 0, 0, 0}, {255 * 256, 65535, 65535, 65535, 65535}};
         const vf_tf_t tf = {pts, 2};
-        vf_params_t p;
-        vf_params_default(&p);
-        p.mode = VF_MODE_PREINT2;
+        vf_params_t p = preint2_params();
         const vf_view_t view = {0, 0, 0, 65536};
         size_t values;
         uint32_t nk;
@@ -457,11 +460,8 @@ static void lit_sphere(void)
         p.mode = k == 3 ? VF_MODE_PREINT1 : VF_MODE_PREINT2;
         p.lighting = k > 0;
         vf_arena_t arena;
-        vf_arena_init(&arena, arena_buf[0], sizeof arena_buf[0]);
         vf_renderer_t *r;
-        CHECK_EQ(vf_renderer_create(&r, &p, &vol, &arena), VF_OK);
-        CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
-        CHECK_EQ(vf_renderer_set_tf(r, &tf), VF_OK);
+        CHECK_EQ(scene_renderer(&r, &arena, arena_buf[0], sizeof arena_buf[0], &p, &vol, &tf), VF_OK);
         if (p.lighting)
             CHECK_EQ(vf_renderer_set_lighting(r, k == 1 ? NULL : &l), VF_OK);
         const vf_image_t im = {px[k], 64, 64, 64 * 3, VF_FORMAT_RGB888};

@@ -185,8 +185,7 @@ static void scene_once(vf_mode_t mode, uint32_t table_size, int view_kind, const
         view.roll = (int32_t)rnd(8) * 8192;
     }
     uint32_t w = 1 + rnd(60), h = 1 + rnd(60);
-    vf_image_t im = image_of(0, w, h, VF_FORMAT_RGB888);
-    vf_status_t st = vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s));
+    vf_status_t st = scene_draw(&s, &view, 0, w, h);
     if (st == VF_ERR_ARG) { /* refused only when a pixel would cover more than 256 voxels (factor.c) */
         double spmin = 1e300, d2 = 0;
         for (int a = 0; a < 3; a++)
@@ -278,8 +277,7 @@ static void constant_volume_closed_form(void)
         CHECK_EQ(scene_ready(&s, &tf), VF_OK);
         /* 4x4 output: scale = zoom * 4 / (3 sqrt 3) = 1 for zoom = 3 sqrt(3) / 4: a near-identity warp */
         vf_view_t view = {0, 0, 0, (uint32_t)lround(3 * sqrt(3) / 4 * 65536)};
-        vf_image_t im = image_of(0, 4, 4, VF_FORMAT_RGB888);
-        CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+        CHECK_EQ(scene_draw(&s, &view, 0, 4, 4), VF_OK);
         const vf_factor_t *f = vf_renderer_factor(s.r);
         CHECK_EQ(f->k_axis, 2);
         CHECK_EQ(f->int_w, 4);
@@ -312,8 +310,7 @@ static void early_termination(void)
     vf_tf_t tf = {&p, 1};
     CHECK_EQ(scene_ready(&s, &tf), VF_OK);
     vf_view_t view = {0, 0, 0, 65536};
-    vf_image_t im = image_of(0, 8, 8, VF_FORMAT_RGB888);
-    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+    CHECK_EQ(scene_draw(&s, &view, 0, 8, 8), VF_OK);
     const uint16_t *inter = vfi_renderer_intermediate(s.r);
     /* a = 1 - 0.39^1 per slice: after k slices 1 - 0.39^k; 1 - 2^-10 is passed at slice 8, then nothing more */
     for (size_t px = 0; px < 36; px++) {
@@ -345,8 +342,7 @@ static void invisible_volume_background(void)
         vf_renderer_memory(s.r, &mem);
         CHECK(mem.runs <= 3 * (4 * (10 * 7 * 5) + 64)); /* the row index and one spare value per axis, no pairs */
         vf_view_t view = {1234, -5678, 999, 80000};
-        vf_image_t im = image_of(0, 23, 17, VF_FORMAT_RGB888);
-        CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+        CHECK_EQ(scene_draw(&s, &view, 0, 23, 17), VF_OK);
         for (size_t px = 0; px < 23 * 17; px++)
             for (int c = 0; c < 3; c++)
                 CHECK_EQ(pixels[0][px * 3 + c], lround(bgs[b][c] * 255.0 / 65535));
@@ -366,8 +362,7 @@ static void point_vs_preint1_constant_tf(void)
         vf_tf_t tf = {&p, 1};
         CHECK_EQ(scene_ready(&s, &tf), VF_OK);
         vf_view_t view = {0, 0, 0, 65536};
-        vf_image_t im = image_of(0, 16, 16, VF_FORMAT_RGB888);
-        CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+        CHECK_EQ(scene_draw(&s, &view, 0, 16, 16), VF_OK);
         const uint16_t *inter = vfi_renderer_intermediate(s.r);
         double tau = -log(1 - 9000 / 65535.0);
         double want = 1 - exp(-tau * (m ? 5 : 6));
@@ -457,8 +452,7 @@ static void state_follows_changes(void)
                 win = wins[(step / 5) % 2 == 0];
                 CHECK_EQ(vf_renderer_set_window(s.r, win), VF_OK);
             }
-            vf_image_t im = image_of(0, 40, 40, VF_FORMAT_RGB888);
-            CHECK_EQ(vf_renderer_draw(s.r, view, &im, scratch, scratch_for(&s)), VF_OK);
+            CHECK_EQ(scene_draw(&s, view, 0, 40, 40), VF_OK);
             vf_params_t p = s.params;
             vf_arena_t arena;
             vf_arena_init(&arena, fresh_buf, sizeof fresh_buf);
@@ -536,8 +530,7 @@ static void identity_warp(void)
     tf_pts[0].a = 3000;
     CHECK_EQ(scene_ready(&s, &tf), VF_OK);
     vf_view_t view = {0, 0, 0, 65536};
-    vf_image_t im = image_of(0, 21, 21, VF_FORMAT_RGB888);
-    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+    CHECK_EQ(scene_draw(&s, &view, 0, 21, 21), VF_OK);
     const vf_factor_t *f = vf_renderer_factor(s.r);
     CHECK(f->du_dx_q32 == (INT64_C(1) << 32) && f->u0_q32 == -(INT64_C(3) << 32));
     const uint16_t *inter = vfi_renderer_intermediate(s.r);
@@ -577,8 +570,7 @@ static void shear_beyond_one_skips_visible(void)
     vf_tf_t tf = {p, 3};
     CHECK_EQ(scene_ready(&s, &tf), VF_OK);
     vf_view_t view = {4593, -7670, 0, 65536};
-    vf_image_t im = image_of(0, 32, 32, VF_FORMAT_RGB888);
-    CHECK_EQ(vf_renderer_draw(s.r, &view, &im, scratch, scratch_for(&s)), VF_OK);
+    CHECK_EQ(scene_draw(&s, &view, 0, 32, 32), VF_OK);
     const vf_factor_t *f = vf_renderer_factor(s.r);
     /* the premise with the core of this writing: k = y, si = -1.0000009, offsets 9 + 2^-16 and 8 for slices 0
      * and 1; a core that avoids shears beyond 1 passes by matching section 4 all the same */
