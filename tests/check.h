@@ -48,6 +48,8 @@ static inline uint32_t check_mod(uint64_t *state, uint32_t n)
 const char *check_data(const char *name, char *path, size_t len);
 
 #define CHECK_CASES(...) static const check_case_t check_cases_[] = {__VA_ARGS__}
+/* One entry of CHECK_CASES: a case named as its function is. */
+#define CHECK_CASE(fn) {#fn, fn}
 #define CHECK_RUN(suite) \
     int main(int argc, char **argv) \
     { \

@@ -824,13 +824,10 @@ static void table_api_arguments(void)
     CHECK_EQ(arena.used, 0);
 }
 
-CHECK_CASES({"table_api_arguments", table_api_arguments}, {"classify_random", classify_random},
-            {"classify_special", classify_special},
-            {"classify_bad_keeps_previous", classify_bad_keeps_previous},
-            {"entry_of_sample_exact", entry_of_sample_exact}, {"entry_of_scalar_table", entry_of_scalar_table},
-            {"tables_random", tables_random}, {"tables_full_size", tables_full_size},
-            {"tables_constant_tf", tables_constant_tf}, {"tables_invisible", tables_invisible},
-            {"tables_incremental", tables_incremental}, {"tables_8bit", tables_8bit},
-            {"tables_incremental_formats", tables_incremental_formats}, {"tables_no_clamp", tables_no_clamp},
-            {"scalar_entry_ranges", scalar_entry_ranges}, {"correction_lut", correction_lut});
+CHECK_CASES(CHECK_CASE(table_api_arguments), CHECK_CASE(classify_random), CHECK_CASE(classify_special),
+            CHECK_CASE(classify_bad_keeps_previous), CHECK_CASE(entry_of_sample_exact),
+            CHECK_CASE(entry_of_scalar_table), CHECK_CASE(tables_random), CHECK_CASE(tables_full_size),
+            CHECK_CASE(tables_constant_tf), CHECK_CASE(tables_invisible), CHECK_CASE(tables_incremental),
+            CHECK_CASE(tables_8bit), CHECK_CASE(tables_incremental_formats), CHECK_CASE(tables_no_clamp),
+            CHECK_CASE(scalar_entry_ranges), CHECK_CASE(correction_lut));
 CHECK_RUN("core/classify_tables")

@@ -391,8 +391,7 @@ static void memory_report(void)
     CHECK(arena.peak <= bytes + dense_runs + 16);
 }
 
-CHECK_CASES({"create_fault_loop", create_fault_loop}, {"create_every_size", create_every_size},
-            {"set_tf_fault_loop", set_tf_fault_loop}, {"set_tf_failure_inside_frame", set_tf_failure_inside_frame},
-            {"set_tf_short_arena", set_tf_short_arena}, {"set_window_short_arena", set_window_short_arena},
-            {"memory_report", memory_report});
+CHECK_CASES(CHECK_CASE(create_fault_loop), CHECK_CASE(create_every_size), CHECK_CASE(set_tf_fault_loop),
+            CHECK_CASE(set_tf_failure_inside_frame), CHECK_CASE(set_tf_short_arena), CHECK_CASE(set_window_short_arena),
+            CHECK_CASE(memory_report));
 CHECK_RUN("core/faults")

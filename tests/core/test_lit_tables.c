@@ -657,10 +657,7 @@ static void lit_public_api(void)
     CHECK_EQ(arena.used, 0);
 }
 
-CHECK_CASES({"emission_depth", emission_depth}, {"lit_against_spec", lit_against_spec},
-            {"lit_special", lit_special}, {"lit_grey_twin", lit_grey_twin},
-            {"lit_parts_and_demand", lit_parts_and_demand},
-            {"lit_formats", lit_formats}, {"lit_view_table", lit_view_table}, {"lit_extremes", lit_extremes},
-            {"lit_large", lit_large},
-            {"lit_public_api", lit_public_api});
+CHECK_CASES(CHECK_CASE(emission_depth), CHECK_CASE(lit_against_spec), CHECK_CASE(lit_special),
+            CHECK_CASE(lit_grey_twin), CHECK_CASE(lit_parts_and_demand), CHECK_CASE(lit_formats),
+            CHECK_CASE(lit_view_table), CHECK_CASE(lit_extremes), CHECK_CASE(lit_large), CHECK_CASE(lit_public_api));
 CHECK_RUN("core/lit_tables")

@@ -405,7 +405,6 @@ static void option_arguments(void)
     CHECK(strcmp(vf_mode_name(VF_MODE_PRECLASS), vf_mode_name(VF_MODE_POINT)) != 0);
 }
 
-CHECK_CASES({"all_options", all_options}, {"buffers_identical", buffers_identical},
-            {"lut_at_unit_slab", lut_at_unit_slab},
-            {"option_arguments", option_arguments});
+CHECK_CASES(CHECK_CASE(all_options), CHECK_CASE(buffers_identical), CHECK_CASE(lut_at_unit_slab),
+            CHECK_CASE(option_arguments));
 CHECK_RUN("core/options")

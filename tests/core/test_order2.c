@@ -486,34 +486,43 @@ static void refused(void)
     const vf_volume_t vol = {{4, 4, 4}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
     vf_params_t p;
     vf_params_default(&p);
-    size_t bytes;
     CHECK_EQ(p.table2_size, VF_DEFAULT_TABLE2);
-    p.mode = VF_MODE_PREINT2;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_OK);
-    p.partial_slabs = true;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_ERR_UNSUPPORTED);
-    p.partial_slabs = false;
-    p.lookup = VF_LOOKUP_BILINEAR;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_ERR_ARG);
-    p.lookup = VF_LOOKUP_TRILINEAR;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_OK);
-    p.mode = VF_MODE_PREINT1;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_ERR_ARG);
-    p.mode = VF_MODE_PREINT2;
-    p.lookup = VF_LOOKUP_NEAREST;
-    p.table2_size = 15;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_ERR_ARG);
-    p.table2_size = 129;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_ERR_ARG);
-    p.table2_size = 0; /* ignored by the other modes */
-    p.mode = VF_MODE_POINT;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_OK);
+    CHECK_EQ(p.lookup, VF_LOOKUP_NEAREST);
+    /* the defaults with each row's mode, partial slabs, lookup and 3D table size */
+    static const struct {
+        vf_mode_t mode;
+        bool partial;
+        vf_lookup_t lookup;
+        uint32_t table2_size;
+        vf_status_t want;
+    } rows[] = {
+        {VF_MODE_PREINT2, false, VF_LOOKUP_NEAREST, VF_DEFAULT_TABLE2, VF_OK},
+        {VF_MODE_PREINT2, true, VF_LOOKUP_NEAREST, VF_DEFAULT_TABLE2, VF_ERR_UNSUPPORTED},
+        {VF_MODE_PREINT2, false, VF_LOOKUP_BILINEAR, VF_DEFAULT_TABLE2, VF_ERR_ARG},
+        {VF_MODE_PREINT2, false, VF_LOOKUP_TRILINEAR, VF_DEFAULT_TABLE2, VF_OK},
+        {VF_MODE_PREINT1, false, VF_LOOKUP_TRILINEAR, VF_DEFAULT_TABLE2, VF_ERR_ARG},
+        {VF_MODE_PREINT2, false, VF_LOOKUP_NEAREST, 15, VF_ERR_ARG},
+        {VF_MODE_PREINT2, false, VF_LOOKUP_NEAREST, 129, VF_ERR_ARG},
+        {VF_MODE_POINT, false, VF_LOOKUP_NEAREST, 0, VF_OK}, /* the 3D table's size is ignored by the other modes */
+    };
+    for (size_t n = 0; n < sizeof rows / sizeof rows[0]; n++) {
+        vf_params_default(&p);
+        p.mode = rows[n].mode;
+        p.partial_slabs = rows[n].partial;
+        p.lookup = rows[n].lookup;
+        p.table2_size = rows[n].table2_size;
+        size_t bytes;
+        const vf_status_t got = vf_renderer_bytes(&p, &vol, &bytes);
+        CHECK_MSG(got == rows[n].want, "row %zu (%s, partial %d, %s, %u): %s, want %s", n, vf_mode_name(p.mode),
+                  (int)p.partial_slabs, vf_lookup_name(p.lookup), p.table2_size, vf_status_text(got),
+                  vf_status_text(rows[n].want));
+    }
     CHECK(strcmp(vf_mode_name(VF_MODE_PREINT2), "preint2") == 0);
     CHECK(strcmp(vf_lookup_name(VF_LOOKUP_TRILINEAR), "trilinear") == 0);
 }
 
-CHECK_CASES({"table_against_double", table_against_double}, {"lit_against_double", lit_against_double}, {"parts_equal_whole", parts_equal_whole},
-            {"mirrors_and_bounds", mirrors_and_bounds}, {"line_is_order1", line_is_order1},
-            {"general_equals_default", general_equals_default}, {"threads_identical", threads_identical},
-            {"last_slab_composited", last_slab_composited}, {"lit_sphere", lit_sphere}, {"refused", refused});
+CHECK_CASES(CHECK_CASE(table_against_double), CHECK_CASE(lit_against_double), CHECK_CASE(parts_equal_whole),
+            CHECK_CASE(mirrors_and_bounds), CHECK_CASE(line_is_order1), CHECK_CASE(general_equals_default),
+            CHECK_CASE(threads_identical), CHECK_CASE(last_slab_composited), CHECK_CASE(lit_sphere),
+            CHECK_CASE(refused));
 CHECK_RUN("order2")

@@ -585,13 +585,10 @@ static void shear_beyond_one_skips_visible(void)
         }
 }
 
-CHECK_CASES({"composite_matches_section4_point", composite_matches_section4_point},
-            {"composite_matches_section4_preint1", composite_matches_section4_preint1},
-            {"composite_matches_section4_long", composite_matches_section4_long},
-            {"constant_volume_closed_form", constant_volume_closed_form}, {"early_termination", early_termination},
-            {"invisible_volume_background", invisible_volume_background},
-            {"point_vs_preint1_constant_tf", point_vs_preint1_constant_tf},
-            {"bands_are_deterministic", bands_are_deterministic}, {"state_follows_changes", state_follows_changes},
-            {"output_formats", output_formats}, {"identity_warp", identity_warp},
-            {"shear_beyond_one_skips_visible", shear_beyond_one_skips_visible});
+CHECK_CASES(CHECK_CASE(composite_matches_section4_point), CHECK_CASE(composite_matches_section4_preint1),
+            CHECK_CASE(composite_matches_section4_long), CHECK_CASE(constant_volume_closed_form),
+            CHECK_CASE(early_termination), CHECK_CASE(invisible_volume_background),
+            CHECK_CASE(point_vs_preint1_constant_tf), CHECK_CASE(bands_are_deterministic),
+            CHECK_CASE(state_follows_changes), CHECK_CASE(output_formats), CHECK_CASE(identity_warp),
+            CHECK_CASE(shear_beyond_one_skips_visible));
 CHECK_RUN("core/render")

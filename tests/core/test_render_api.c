@@ -337,8 +337,7 @@ static void null_and_range_safe(void)
     CHECK(m.total > 0 && m.total <= s.arena.used);
 }
 
-CHECK_CASES({"null_and_range_safe", null_and_range_safe}, {"state_machine", state_machine},
-            {"bad_tf_keeps_picture", bad_tf_keeps_picture},
-            {"tf_change_inside_frame", tf_change_inside_frame}, {"create_arguments", create_arguments},
-            {"status_texts", status_texts}, {"two_renderers", two_renderers});
+CHECK_CASES(CHECK_CASE(null_and_range_safe), CHECK_CASE(state_machine), CHECK_CASE(bad_tf_keeps_picture),
+            CHECK_CASE(tf_change_inside_frame), CHECK_CASE(create_arguments), CHECK_CASE(status_texts),
+            CHECK_CASE(two_renderers));
 CHECK_RUN("core/render_api")

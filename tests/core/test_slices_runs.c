@@ -376,7 +376,6 @@ static void runs_count_matches_fill(void)
     }
 }
 
-CHECK_CASES({"window_all_values", window_all_values}, {"slice_copies", slice_copies},
-            {"window_rejects_empty", window_rejects_empty}, {"runs_random", runs_random},
-            {"runs_all_or_nothing", runs_all_or_nothing}, {"runs_count_matches_fill", runs_count_matches_fill});
+CHECK_CASES(CHECK_CASE(window_all_values), CHECK_CASE(slice_copies), CHECK_CASE(window_rejects_empty),
+            CHECK_CASE(runs_random), CHECK_CASE(runs_all_or_nothing), CHECK_CASE(runs_count_matches_fill));
 CHECK_RUN("core/slices_runs")
