@@ -42,6 +42,20 @@ static inline void scene_fill_blob(uint8_t *vox, const uint32_t dims[3], const s
             }
 }
 
+/* Fills the dims[0] x dims[1] x dims[2] u8 voxels at vox, x fastest, with shape(x, y, z) plus noise_bits of a
+ * linear congruential sequence from seed: a fixed volume, the same on every machine. */
+static inline void scene_fill_shape(uint8_t *vox, const uint32_t dims[3], int (*shape)(int x, int y, int z),
+                                    uint32_t seed, unsigned noise_bits)
+{
+    for (uint32_t z = 0; z < dims[2]; z++)
+        for (uint32_t y = 0; y < dims[1]; y++)
+            for (uint32_t x = 0; x < dims[0]; x++) {
+                seed = seed * 1103515245u + 12345u;
+                vox[((size_t)z * dims[1] + y) * dims[0] + x] =
+                    (uint8_t)(shape((int)x, (int)y, (int)z) + (int)(seed >> (32 - noise_bits)));
+            }
+}
+
 /* A random transfer function's shape: 1 to 6 points from scalar draw(50000) on, draw(step) apart, random colours;
  * each point's opacity by k = draw(5): zero for k < zeros, then opaque, then faint (draw(faint)), else any. */
 typedef struct scene_tf_style {

@@ -29,17 +29,16 @@ static unsigned char pixels[2][32 * 32 * 3];
 
 static const vf_volume_t volume = {{NX, NY, NZ}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
 
-/* A ball of high values in a low background, with noise. */
+/* A ball of high values in a low background. */
+static int ball(int x, int y, int z)
+{
+    return (x - 4) * (x - 4) + (y - 3) * (y - 3) + (z - 3) * (z - 3) <= 6 ? 200 : 40;
+}
+
+/* The ball with 5 bits of noise. */
 static void fill_volume(void)
 {
-    uint32_t seed = 12345;
-    for (uint32_t z = 0; z < NZ; z++)
-        for (uint32_t y = 0; y < NY; y++)
-            for (uint32_t x = 0; x < NX; x++) {
-                seed = seed * 1103515245u + 12345u;
-                int d2 = ((int)x - 4) * ((int)x - 4) + ((int)y - 3) * ((int)y - 3) + ((int)z - 3) * ((int)z - 3);
-                vox[(z * NY + y) * NX + x] = (uint8_t)((d2 <= 6 ? 200 : 40) + (seed >> 27));
-            }
+    scene_fill_shape(vox, volume.dims, ball, 12345, 5);
 }
 
 static vf_params_t params_of(vf_mode_t mode)

@@ -172,20 +172,17 @@ static int check_lit_tables(fixture_t *fx, const vf_tf_t *tf, double d, bool bru
     d = slab_q16 / 65536.0; /* the spec table is for the same quantised length */
     spec_classify(tf, n);
     static uint16_t unlit[256 * 256 * 4];
-    vfi_preint_table_incremental(&fx->cls, slab_q16, &fx->scratch, q15_out(main_a, lit_a));
-    if (n <= 256) {
-        vfi_preint_table_incremental(&fx->cls, slab_q16, &fx->scratch, q15_out(unlit, NULL));
-        if (memcmp(unlit, main_a, (size_t)n * n * 4 * sizeof unlit[0]) != 0) {
-            check_fail(__FILE__, __LINE__, "N %u d %g: the main table differs with the lit outputs asked for", n, d);
-            return 0;
-        }
-    }
-    if (bruteforce) {
-        vfi_preint_table_bruteforce(&fx->cls, slab_q16, &fx->scratch, q15_out(main_b, lit_b));
+    for (int builder = 0; builder < (bruteforce ? 2 : 1); builder++) {
+        void (*build)(const vfi_classify_t *, uint32_t, const vfi_table_scratch_t *, vfi_table_out_t) =
+            builder ? vfi_preint_table_bruteforce : vfi_preint_table_incremental;
+        uint16_t *m = builder ? main_b : main_a;
+        build(&fx->cls, slab_q16, &fx->scratch, q15_out(m, builder ? lit_b : lit_a));
+        /* the main table is the same to the bit with the lit outputs asked for or not */
         if (n <= 256) {
-            vfi_preint_table_bruteforce(&fx->cls, slab_q16, &fx->scratch, q15_out(unlit, NULL));
-            if (memcmp(unlit, main_b, (size_t)n * n * 4 * sizeof unlit[0]) != 0) {
-                check_fail(__FILE__, __LINE__, "N %u d %g: the brute force's main table differs with lit", n, d);
+            build(&fx->cls, slab_q16, &fx->scratch, q15_out(unlit, NULL));
+            if (memcmp(unlit, m, (size_t)n * n * 4 * sizeof unlit[0]) != 0) {
+                check_fail(__FILE__, __LINE__, "N %u d %g: the %s main table differs with the lit outputs asked for",
+                           n, d, builder ? "brute force's" : "incremental");
                 return 0;
             }
         }
