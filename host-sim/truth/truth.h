@@ -100,6 +100,20 @@ int truth_camera(const ref_volume_t *vol, const ref_view_t *view, int out_w, int
 int truth_camera_ray(const truth_camera_t *cam, double px, double py, double origin[3], double dir[3],
                      double *t_in, double *t_out);
 
+/* A ray's walk through the cells [c, c + 1]^3, c_a in 0..n_a - 2 (3D DDA, Amanatides and Woo), from t_in to t_out
+ * along origin + t dir. A ray on a cell face may be given either cell: the fields are continuous there. */
+typedef struct truth_walk {
+    int piece[3];        /* the cell of the piece truth_walk_next returned last */
+    int cell[3], step[3], dims[3], done;
+    double t_next[3], t, t_out;
+    const double *o, *d;
+} truth_walk_t;
+
+void truth_walk_start(truth_walk_t *w, const int dims[3], const double origin[3], const double dir[3], double t_in,
+                      double t_out);
+/* The next piece [*t0, *t1] of the ray, in cell w->piece; 0 once the ray has left the volume. */
+int truth_walk_next(truth_walk_t *w, double *t0, double *t1);
+
 /* The trilinear scalar at object point p (clamped to the volume). */
 double truth_sample(const ref_volume_t *vol, const double p[3]);
 

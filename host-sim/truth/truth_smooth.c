@@ -278,31 +278,12 @@ void truth_trace_field(const truth_tf_t *tf, const truth_camera_t *cam, const tr
     double o[3], d[3], t_in, t_out;
     if (!truth_camera_ray(cam, px, py, o, d, &t_in, &t_out))
         return;
-    /* the trilinear walk's 3D DDA: the cells give the cubic filters their bounds and every filter its pace */
-    int cell[3], step[3];
-    double t_next[3];
-    for (int a = 0; a < 3; a++) {
-        double p = o[a] + t_in * d[a];
-        step[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
-        double c = step[a] < 0 ? ceil(p) - 1 : floor(p);
-        cell[a] = c < 0 ? 0 : c > vol->dims[a] - 2 ? vol->dims[a] - 2 : (int)c;
-        t_next[a] = step[a] == 0 ? INFINITY : (cell[a] + (step[a] > 0) - o[a]) / d[a];
-    }
-    double t0 = t_in;
-    while (t0 < t_out && acc->T > 1.0 - TRUTH_STOP_OPACITY) {
-        int a = t_next[0] <= t_next[1] && t_next[0] <= t_next[2] ? 0 : t_next[1] <= t_next[2] ? 1 : 2;
-        double t1 = fmin(t_next[a], t_out);
-        if (t1 > t0) {
-            cell_smooth(f, tf, opts, cell, o, d, t0, t1, acc);
-            t0 = t1;
-        }
-        if (t_next[a] >= t_out)
-            break;
-        cell[a] += step[a];
-        if (cell[a] < 0 || cell[a] > vol->dims[a] - 2)
-            break;
-        t_next[a] = (cell[a] + (step[a] > 0) - o[a]) / d[a];
-    }
+    /* the trilinear walk's cells: they give the cubic filters their bounds and every filter its pace */
+    truth_walk_t w;
+    truth_walk_start(&w, vol->dims, o, d, t_in, t_out);
+    double t0, t1;
+    while (acc->T > 1.0 - TRUTH_STOP_OPACITY && truth_walk_next(&w, &t0, &t1))
+        cell_smooth(f, tf, opts, w.piece, o, d, t0, t1, acc);
 }
 
 /* The tolerance on the scalar's distance from its chord where the scalar spans [lo, hi] (truth_ray.c's rule). */
