@@ -52,23 +52,19 @@ static const char script[] =
     "unset multiplot\n";
 
 static vfp_status_t write_files(const char *dir, const truth_study_t *st, const char *about);
+
 static int run_gnuplot(const char *dir);
 
 int sim_cmd_ray(int argc, char **argv)
 {
     sim_opts_t o;
     sim_scene_t scene;
-    vfp_status_t status = sim_scene_command(&o, &scene, argc, argv, SIM_OPT_OUT | SIM_OPT_PIXEL, usage_head);
+    /* -o is checked (and the folder made) before the volume is loaded */
+    vfp_status_t status = sim_scene_command(&o, &scene, argc, argv, SIM_OPT_OUT | SIM_OPT_OUT_DIR | SIM_OPT_PIXEL,
+                                            usage_head);
     if (status)
         return vfp_exit_status(status);
-    if (!o.out || (mkdir(o.out, 0777) != 0 && errno != EEXIST)) {
-        if (!o.out)
-            fprintf(stderr, "volfix-sim ray: no output folder (-o DIR)\n");
-        else
-            fprintf(stderr, "volfix-sim: %s: cannot make the folder\n", o.out);
-        sim_scene_free(&scene);
-        return VFP_EXIT_ERR;
-    }
+
     char about[512];
     double px = o.have_pixel ? o.pixel[0] : (o.width - 1) / 2.0, py = o.have_pixel ? o.pixel[1] : (o.height - 1) / 2.0;
     sim_ref_inputs_t in;

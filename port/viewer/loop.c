@@ -110,12 +110,14 @@ static void memory_kb(long *rss, long *peak)
         *peak = ru.ru_maxrss; /* KB on Linux */
 }
 
-/* One line of the log: the frame, and the volfix-sim render options that reproduce its pixels. */
-static void log_frame(loop_t *L, int full, double ms, double present_ms, double latency_ms)
+/* One line of the log: the frame, and the volfix-sim render options that reproduce its pixels. Returns VFP_OK,
+ * or VFP_ERR after printing an error when the line could not be written (a full disk ends the run: a log with
+ * holes would not say what was shown). */
+static vfp_status_t log_frame(loop_t *L, int full, double ms, double present_ms, double latency_ms)
 {
     viewer_t *v = L->v;
     if (!v->log)
-        return;
+        return VFP_OK;
     const viewer_scene_t *s = &v->scene;
     const vfp_controls_t *c = &v->controls;
     double slope = s->full.slope != 0 ? s->full.slope : 1, inter = s->full.inter;
@@ -140,7 +142,11 @@ static void log_frame(loop_t *L, int full, double ms, double present_ms, double 
     if (!full && s->preview_factor > 1)
         fprintf(v->log, " --downsample %d", s->preview_factor);
     fputc('\n', v->log);
-    fflush(v->log);
+    if (fflush(v->log) != 0 || ferror(v->log)) {
+        fprintf(stderr, "volfix: %s: cannot write the log: %s\n", v->log_path, strerror(errno ? errno : EIO));
+        return VFP_ERR;
+    }
+    return VFP_OK;
 }
 
 static void record_latencies(loop_t *L, uint64_t now, double *worst)
@@ -213,8 +219,7 @@ static vfp_status_t present(loop_t *L, int full, double ms)
     full ? L->fulls++ : L->previews++;
     L->shown_gen = L->gen;
     L->shown_full = full;
-    log_frame(L, full, ms, (double)(now - t0) / 1e6, worst);
-    return VFP_OK;
+    return log_frame(L, full, ms, (double)(now - t0) / 1e6, worst);
 }
 
 /* Open the display and size the pictures to it. Returns VFP_OK, or VFP_ERR with err. */

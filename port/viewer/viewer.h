@@ -114,6 +114,7 @@ typedef struct viewer {
     const vfp_display_ops_t *display_ops;
     const vfp_input_ops_t *input_ops;
     FILE *log;               /* --log, or NULL */
+    const char *log_path;    /* its name, for messages */
     const char *volume_arg;  /* as given on the command line, for the log's volfix-sim lines */
     unsigned max_frames;     /* --frames N: leave after N frames (0: no limit) */
     int verbose;
