@@ -1,5 +1,6 @@
 /* tf.c: transfer-function files, presets, and their conversion to the core's control points (see tf.h). */
 #include "tf.h"
+#include "readfile.h"
 
 #include <errno.h>
 #include <math.h>
@@ -108,22 +109,20 @@ vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errle
 {
     memset(tf, 0, sizeof *tf);
     tf->look.shade = -1;
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+    char *text;
+    size_t size;
+    if (vfp_read_text(path, VFP_CAP_TF, "transfer function", &text, &size, err, errlen))
         return VFP_ERR;
-    }
     const char *base = strrchr(path, '/');
     snprintf(tf->name, sizeof tf->name, "%s", base ? base + 1 : path);
-    char *line = NULL;
-    size_t cap = 0;
-    ssize_t len;
     int lineno = 0;
     vfp_status_t status = VFP_OK;
-    /* Whole lines however long: a fixed buffer would read the rest of a long comment as a line of its own. */
-    while (status == VFP_OK && (len = getline(&line, &cap, f)) >= 0) {
+    unsigned nul = vfp_text_nul_line(text, size);
+    char *cursor = text, *line;
+    /* whole lines however long, each read once from the text in memory */
+    while (status == VFP_OK && (line = vfp_text_next_line(&cursor)) != NULL) {
         lineno++;
-        if ((size_t)len != strlen(line)) {
+        if ((unsigned)lineno == nul) {
             snprintf(err, errlen, "%s:%d: expected text, found a NUL byte", path, lineno);
             status = VFP_ERR;
             break;
@@ -177,12 +176,7 @@ vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errle
             tf->points[tf->count++] = p;
         }
     }
-    if (status == VFP_OK && ferror(f)) {
-        snprintf(err, errlen, "%s: read error: %s", path, strerror(errno));
-        status = VFP_ERR;
-    }
-    free(line);
-    fclose(f);
+    free(text);
     if (status == VFP_OK && tf->count == 0) {
         snprintf(err, errlen, "%s: no control points (expected lines 'scalar r g b a')", path);
         status = VFP_ERR;
