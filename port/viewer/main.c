@@ -345,10 +345,15 @@ int main(int argc, char **argv)
     viewer_t v;
     memset(&v, 0, sizeof v);
     char err[VIEWER_ERR_LEN] = "";
-    status = setup(&v, &o, err, sizeof err);
+    /* from here on SIGINT and SIGTERM end every stage (a FIFO read waiting for its writer, the loop) cleanly,
+     * with status 130 or 143 as a shell reports a process the signal ended */
+    status = viewer_signals_catch(err, sizeof err);
+    if (status == VFP_OK)
+        status = setup(&v, &o, err, sizeof err);
     if (status) {
-        fprintf(stderr, "volfix: %s\n", err);
-    } else {
+        if (!viewer_signal_caught())
+            fprintf(stderr, "volfix: %s\n", err);
+    } else if (!viewer_signal_caught()) {
         status = viewer_loop(&v);
     }
     if (v.log && fclose(v.log) != 0 && status == VFP_OK) {
@@ -357,5 +362,7 @@ int main(int argc, char **argv)
     }
     vfp_volume_free(&v.scene.full);
     vfp_volume_free(&v.scene.preview);
-    return vfp_exit_status(status);
+    int sig = viewer_signal_caught();
+    viewer_signals_release();
+    return sig ? 128 + sig : vfp_exit_status(status);
 }
