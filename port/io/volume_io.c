@@ -441,13 +441,14 @@ static vfp_status_t read_gzip(stream_t *s, const vfpi_source_t *src, size_t byte
     if (rc == VFP_OK && got < bytes)
         rc = src_fail(err, errlen, src, "truncated: expected %zu bytes of voxel data after decompression, found %zu",
                       bytes, got);
-    /* Count the surplus so the message can say how much there is (a wrong header is the usual cause). */
+    /* One byte more than expected is enough to refuse the file: the rest of the surplus is never decompressed
+     * (a small file can inflate to gigabytes). */
     uint64_t extra = 0;
     if (rc == VFP_OK)
-        rc = stream_skip(s, src, UINT64_MAX, &extra, err, errlen);
+        rc = stream_skip(s, src, 1, &extra, err, errlen);
     if (rc == VFP_OK && extra)
-        rc = src_fail(err, errlen, src, "expected %zu bytes of voxel data after decompression, found %llu%s", bytes,
-                      (unsigned long long)(bytes + extra), src->note ? "" : " (more than the sizes and type say)");
+        rc = src_fail(err, errlen, src, "expected %zu bytes of voxel data after decompression, found at least %zu%s",
+                      bytes, bytes + 1, src->note ? "" : " (more than the sizes and type say)");
     if (rc) {
         free(dst);
         return rc;
