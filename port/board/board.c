@@ -230,9 +230,11 @@ static vfp_status_t set_top(vfpi_board_parser_t *p, int key, const char *keyname
         return copy_string(p, b->display_device, sizeof b->display_device, keyname, value);
     case T_WIDTH:
     case T_HEIGHT:
-        if (!vfpi_board_parse_long(value, 10, 1, 16384, &n))
-            return vfpi_board_fail(p, p->line, "%s: expected a size in pixels from 1 to 16384, found '%.60s'", keyname,
-                                   value);
+        /* the renderer draws images of at most VF_MAX_IMAGE a side: a larger board is refused here, naming the key,
+         * rather than at the first frame */
+        if (!vfpi_board_parse_long(value, 10, 1, VF_MAX_IMAGE, &n))
+            return vfpi_board_fail(p, p->line, "%s: expected a size in pixels from 1 to %d, found '%.60s'", keyname,
+                                   VF_MAX_IMAGE, value);
         *(key == T_WIDTH ? &b->width : &b->height) = (uint32_t)n;
         return VFP_OK;
     case T_FORMAT:

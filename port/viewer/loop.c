@@ -234,6 +234,14 @@ static vfp_status_t open_display(loop_t *L, char *err, size_t errlen)
     if (v->display_ops->open(&L->display, &v->board, err, errlen))
         return VFP_ERR;
     L->display_open = 1;
+    if (L->display.width > VF_MAX_IMAGE || L->display.height > VF_MAX_IMAGE) {
+        /* a display's own mode (drm, fbdev, gud) larger than the renderer draws: said now, not at the first frame */
+        snprintf(err, errlen, "%s: display %s has a %ux%u mode; the renderer draws at most %dx%d", v->board.path,
+                 v->board.display, L->display.width, L->display.height, VF_MAX_IMAGE, VF_MAX_IMAGE);
+        v->display_ops->close(&L->display);
+        L->display_open = 0;
+        return VFP_ERR;
+    }
     if (L->frame.pixels && L->frame.width == L->display.width && L->frame.height == L->display.height &&
         L->frame.format == L->display.format)
         return VFP_OK;
