@@ -53,7 +53,10 @@ vfp_status_t vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load
         return vfpi_fail(err, errlen, "(no file)", 0, "no volume file or phantom spec given");
     snprintf(vol->name, sizeof vol->name, "%s", spec);
 
-    vfp_status_t rc = load(vol, spec, opts, err, errlen);
+    vfp_status_t rc = vfpi_spool_begin(spec, err, errlen);
+    if (rc == VFP_OK)
+        rc = load(vol, spec, opts, err, errlen);
+    vfpi_spool_end();
     if (rc == VFP_OK && opts && opts->downsample > 1)
         rc = vfpi_downsample(vol, opts->downsample, err, errlen);
     if (rc == VFP_OK)
@@ -198,7 +201,7 @@ static vfp_status_t load(vfp_volume_t *vol, const char *spec, const vfp_load_opt
         return vfpi_load_phantom(vol, spec, err, errlen);
     }
     struct stat st;
-    if (stat(spec, &st) != 0)
+    if (vfpi_stat(spec, &st) != 0)
         return vfpi_fail(err, errlen, spec, 0, "cannot open: %s", strerror(errno));
     if (S_ISDIR(st.st_mode))
         return vfpi_fail(err, errlen, spec, 0, "is a directory (expected a volume file)");

@@ -15,6 +15,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <zlib.h>
 
 /*********************
@@ -83,6 +84,81 @@ vfp_status_t vfpi_fail(char *err, size_t errlen, const char *name, unsigned line
     }
     vfp_printable(err); /* a file name or a quoted header value could carry a newline or binary junk */
     return VFP_ERR;
+}
+
+/* The stream copied by vfpi_spool_begin, and the path it came from (one at a time: volumes load one by one). */
+static FILE *spool_file;
+static char *spool_path;
+
+vfp_status_t vfpi_spool_begin(const char *path, char *err, size_t errlen)
+{
+    struct stat st;
+    if (stat(path, &st) != 0 || !(S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode)))
+        return VFP_OK; /* a regular file, a device or a missing path: the readers say what it is */
+    FILE *in = fopen(path, "rb");
+    if (!in)
+        return vfpi_fail(err, errlen, path, 0, "cannot open: %s", strerror(errno));
+    FILE *copy = tmpfile();
+    char *name = strdup(path);
+    unsigned char *buf = malloc(IN_BYTES);
+    vfp_status_t rc = VFP_OK;
+    if (!copy || !name || !buf)
+        rc = vfpi_fail(err, errlen, path, 0, "cannot make a temporary copy of the stream: %s", strerror(errno));
+    uint64_t total = 0;
+    while (rc == VFP_OK) {
+        size_t got = fread(buf, 1, IN_BYTES, in);
+        if (got == 0) {
+            if (ferror(in))
+                rc = vfpi_fail(err, errlen, path, 0, "cannot read: %s", strerror(errno));
+            break;
+        }
+        total += got;
+        if (total > VFPI_SPOOL_CAP)
+            rc = vfpi_fail(err, errlen, path, 0, "a stream longer than %llu MiB, the cap on a volume read from a "
+                           "pipe (give it as a regular file)", VFPI_SPOOL_CAP >> 20);
+        else if (fwrite(buf, 1, got, copy) != got)
+            rc = vfpi_fail(err, errlen, path, 0, "cannot copy the stream to a temporary file: %s", strerror(errno));
+    }
+    fclose(in);
+    free(buf);
+    if (rc == VFP_OK && fflush(copy) != 0)
+        rc = vfpi_fail(err, errlen, path, 0, "cannot copy the stream to a temporary file: %s", strerror(errno));
+    if (rc) {
+        if (copy)
+            fclose(copy);
+        free(name);
+        return VFP_ERR;
+    }
+    vfpi_spool_end();
+    spool_file = copy;
+    spool_path = name;
+    return VFP_OK;
+}
+
+void vfpi_spool_end(void)
+{
+    if (spool_file)
+        fclose(spool_file);
+    free(spool_path);
+    spool_file = NULL;
+    spool_path = NULL;
+}
+
+FILE *vfpi_fopen(const char *path)
+{
+    if (!spool_file || strcmp(path, spool_path) != 0)
+        return fopen(path, "rb");
+    /* a file of its own (its own offset) onto the copy, which stays open until vfpi_spool_end */
+    char proc[64];
+    snprintf(proc, sizeof proc, "/proc/self/fd/%d", fileno(spool_file));
+    return fopen(proc, "rb");
+}
+
+int vfpi_stat(const char *path, struct stat *st)
+{
+    if (spool_file && strcmp(path, spool_path) == 0)
+        return fstat(fileno(spool_file), st);
+    return stat(path, st);
 }
 
 vfp_status_t vfpi_read_head(const char *path, int gzip, unsigned char *buf, size_t cap, size_t *got, char *err,
@@ -251,7 +327,7 @@ static vfp_status_t stream_open(stream_t *s, const vfpi_source_t *src, char *err
 {
     memset(s, 0, sizeof *s);
     s->gzip = src->gzip;
-    s->file = fopen(src->path, "rb");
+    s->file = vfpi_fopen(src->path);
     if (!s->file) {
         const char *why = strerror(errno);
         if (src->owner)
