@@ -12,7 +12,7 @@
 
 #include "status.h"
 
-#define VFP_CAP_TF (1u << 20)       /* a transfer-function file: 1 MiB (at most 64 control points a file) */
+#define VFP_CAP_TF (1u << 20)       /* a transfer-function file: 1 MiB (at most 1022 control points a file) */
 #define VFP_CAP_BOARD (1u << 20)    /* a board file: 1 MiB (a few dozen keys) */
 #define VFP_CAP_SCRIPT (16u << 20)  /* a knob script: 16 MiB (about 800,000 events) */
 

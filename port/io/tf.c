@@ -1,8 +1,10 @@
 /* tf.c: transfer-function files, presets, and their conversion to the core's control points (see tf.h). */
 #include "tf.h"
+#include "numbers.h"
 #include "readfile.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -105,6 +107,24 @@ static vfp_status_t look_line(const char *word, const char *line, vfp_tf_look_t 
     return VFP_OK;
 }
 
+/* A control point's line: exactly five numbers separated by blanks, each read by the options' strict parser
+ * (decimal and finite: "0x10", "nan" and "1junk" are not numbers here either). Returns 1 with *p filled, else 0. */
+static int point_line(char *line, vfp_tf_point_t *p)
+{
+    double v[5];
+    int n = 0;
+    char *save = NULL;
+    for (char *word = strtok_r(line, " \t\r", &save); word; word = strtok_r(NULL, " \t\r", &save)) {
+        if (n == 5 || !vfp_parse_number(word, -DBL_MAX, DBL_MAX, &v[n]))
+            return 0;
+        n++;
+    }
+    if (n != 5)
+        return 0;
+    p->s = v[0], p->r = v[1], p->g = v[2], p->b = v[3], p->a = v[4];
+    return 1;
+}
+
 vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
 {
     memset(tf, 0, sizeof *tf);
@@ -154,9 +174,7 @@ vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errle
             continue;
         }
         vfp_tf_point_t p;
-        char extra[2];
-        int got = sscanf(line, "%lf %lf %lf %lf %lf %1s", &p.s, &p.r, &p.g, &p.b, &p.a, extra);
-        if (got != 5) {
+        if (!point_line(line, &p)) {
             snprintf(err, errlen, "%s:%d: expected a control point 'scalar r g b a' (five numbers)", path, lineno);
             status = VFP_ERR;
         } else if (!isfinite(p.s)) {
