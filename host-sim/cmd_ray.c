@@ -59,7 +59,7 @@ int sim_cmd_ray(int argc, char **argv)
 {
     sim_opts_t o;
     sim_scene_t scene;
-    /* -o is checked (and the folder made) before the volume is loaded */
+    /* -o is checked before the volume is loaded, and the folder made when its files are written */
     vfp_status_t status = sim_scene_command(&o, &scene, argc, argv, SIM_OPT_OUT | SIM_OPT_OUT_DIR | SIM_OPT_PIXEL,
                                             usage_head);
     if (status)
@@ -137,6 +137,10 @@ static vfp_status_t close_file(FILE *f, const char *path)
 
 static vfp_status_t write_files(const char *dir, const truth_study_t *st, const char *about)
 {
+    if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "volfix-sim: -o %s: cannot make the folder: %s\n", dir, strerror(errno));
+        return VFP_ERR;
+    }
     char path[4096];
     FILE *f = open_in(dir, "ray.csv", path, sizeof path);
     if (!f)

@@ -369,13 +369,16 @@ vfp_status_t sim_check_options(const sim_opts_t *o, unsigned groups)
         return VFP_ERR;
     }
     if ((groups & SIM_OPT_OUT_DIR) && o->out) {
+        /* the folder is made when the files are written, so that input found bad later leaves nothing behind:
+         * here it is an existing folder that can be written into, or a new one whose parent can */
         struct stat st;
-        if (mkdir(o->out, 0777) != 0 && errno != EEXIST) {
-            fprintf(stderr, "volfix-sim: -o %s: cannot make the folder: %s\n", o->out, strerror(errno));
-            return VFP_ERR;
-        }
-        if (stat(o->out, &st) != 0 || !S_ISDIR(st.st_mode) || access(o->out, W_OK) != 0) {
-            fprintf(stderr, "volfix-sim: -o %s: expected a folder volfix-sim can write into\n", o->out);
+        char parent[4096];
+        const char *slash = strrchr(o->out, '/');
+        snprintf(parent, sizeof parent, "%.*s", slash ? (slash == o->out ? 1 : (int)(slash - o->out)) : 1,
+                 slash ? o->out : ".");
+        const char *dir = stat(o->out, &st) == 0 ? o->out : parent;
+        if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode) || access(dir, W_OK) != 0) {
+            fprintf(stderr, "volfix-sim: -o %s: expected a folder volfix-sim can write into (or make)\n", o->out);
             return VFP_ERR;
         }
     }

@@ -121,6 +121,11 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
         } else if (!strcmp(a, "--board") && v) {
             o->board = v;
         } else if (!strcmp(a, "--preset") && v) {
+            int k = 0;
+            while (vfp_tf_preset_names[k] && strcmp(v, vfp_tf_preset_names[k]))
+                k++;
+            if (!vfp_tf_preset_names[k])
+                return bad(a, v, "ramp, sharp, ct-bone, ct-skin-bone or mr-brain");
             o->preset = v;
         } else if (!strcmp(a, "--tf") && v) {
             o->tf = v;

@@ -170,7 +170,7 @@ printf 'display = png\ninput = script\nknob.0.action = spin\n' >"$tmp/typo.board
 expect_error "board with a typo" "typo.board:3:" --board "$tmp/typo.board" phantom:sphere:8
 expect_error "missing script" "nope.script" --board "$board" phantom:sphere:8 --script "$tmp/nope.script" --device "$tmp/x"
 expect_error "missing volume" "nope.nhdr" --board "$board" "$tmp/nope.nhdr" --script "$tmp/idle.script" --device "$tmp/x"
-expect_error "unknown preset" "unknown preset 'bones'" --board "$board" phantom:sphere:8 --preset bones --script "$tmp/idle.script"
+expect_error "unknown preset" "--preset bones: expected ramp, sharp" --board "$board" phantom:sphere:8 --preset bones --script "$tmp/idle.script"
 expect_error "bad preview" "--preview 0: expected an integer from 1 (off) to 8" --board "$board" phantom:sphere:8 --preview 0
 expect_error "unknown option" "unknown option or extra argument '--colour'" --board "$board" phantom:sphere:8 --colour red
 touch "$tmp/file"
