@@ -35,8 +35,9 @@ static const preset_t presets[] = {
       {0.28, 1, 0.5, 0.1, 0}, {0.30, 1, 0.5, 0.1, 0.9}, {0.32, 1, 0.5, 0.1, 0},
       {0.53, 0.2, 1, 0.3, 0}, {0.55, 0.2, 1, 0.3, 0.9}, {0.57, 0.2, 1, 0.3, 0},
       {0.78, 1, 1, 1, 0}, {0.80, 1, 1, 1, 1}, {0.82, 1, 1, 1, 0}}, 0},
-    /* CT: with the default window (0.5 to 99.5 percentiles) air sits near 0, soft tissue near 0.42 and bone
-     * from about 0.55 up; the skin layer is the partial-volume ramp between air and tissue. */
+    /* CT, window-relative: with the default window (docs/defaults.md) air sits near 0, soft tissue of
+     * uncalibrated CT (cthead) across the skin peak at 0.30-0.40 and bone from about 0.5 up; the skin layer is
+     * the partial-volume ramp between air and tissue. */
     {"ct-bone", "CT: bone, ivory and opaque; soft tissue and air clear", 4,
      {{0.0, 1, 0.95, 0.85, 0}, {0.52, 1, 0.95, 0.85, 0}, {0.62, 1, 0.95, 0.85, 0.5}, {1.0, 1, 1, 1, 0.9}}, 1},
     {"ct-skin-bone", "CT: a thin translucent skin over opaque bone", 7,
