@@ -13,7 +13,10 @@
 # nothing outside the output path is created, changed or deleted. Each case runs under a timeout of CASE_SECONDS.
 #
 # tests/attack/numbers.matrix gives OPTION lines for each program: every OPTION is given each of the junk values
-# below, and each must be refused naming the option. The signal and FIFO cases are at the end of this file.
+# below, and each must be refused naming the option. The cases run in LANES lanes side by side (default 2), each
+# with a scratch folder of its own (tests/attack/fixtures.inc makes it). The signal, FIFO and lost-display cases
+# are at the end of this file. STATUS 2+ is as 2 for a defect found only while the program runs (a log on
+# /dev/full): what it printed and wrote before may stay.
 cd "$(dirname "$0")/../.." || exit 2
 BUILD=${BUILD:-build}
 suite=attack
@@ -170,6 +173,25 @@ for sig in INT:130 TERM:143; do
     signal_case "volfix in its loop $s" "$s" "$w" "$V" --board "$F/good.board" "$F/good.nhdr" \
         --device "$tmp/sig-frames" --script "$tmp/forever.script"
 done
+
+# A display that goes away: the png display's folder removed while the viewer runs is a clear exit 2 naming it
+# (README: a lost display is looked for again, or the run ends with status 2; a folder of frames is not looked for).
+count=$((count + 1))
+i=0
+while [ $i -lt 100 ]; do echo "$((i * 100)) turn 0 1"; i=$((i + 1)); done >"$tmp/long.script"
+mkdir -p "$tmp/gone"
+timeout 20 "$V" --board "$F/good.board" "$F/good.nhdr" --device "$tmp/gone/frames" --script "$tmp/long.script" \
+    >"$tmp/gone.out" 2>"$tmp/gone.err" &
+pid=$!
+i=0
+while [ ! -e "$tmp/gone/frames/frame-00002.png" ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
+rm -rf "$tmp/gone/frames"
+wait $pid
+status=$?
+if [ $status -ne 2 ] || [ "$(wc -l <"$tmp/gone.err")" -ne 1 ] || ! grep -q "gone/frames" "$tmp/gone.err"; then
+    failed=$((failed + 1))
+    fail "display:folder removed while running" "status $status: $(head -c 300 "$tmp/gone.err" | tr '\n' '|')"
+fi
 
 # A FIFO fed once: the volume, the transfer function and the script are each read once, as streams.
 count=$((count + 1))
