@@ -9,7 +9,7 @@
 # to it) and $O for the output folder inside it. STATUS 2 is bad input: exit status 2, exactly one line on
 # stderr containing PHRASE (the option or the file), nothing on stdout, and the output folder left empty. STATUS
 # 0 is input that must work (the checks refuse nothing valid). For every case, a snapshot of the scratch folder
-# (names, types, sizes, modes, link targets, contents' checksums) taken before and after must be the same:
+# (names, types, sizes, modes, link targets, inodes, change times) taken before and after must be the same:
 # nothing outside the output path is created, changed or deleted. Each case runs under a timeout of CASE_SECONDS.
 #
 # tests/attack/numbers.matrix gives OPTION lines for each program: every OPTION is given each of the junk values
