@@ -79,8 +79,10 @@ int sim_cmd_ray(int argc, char **argv)
     const char *base = strrchr(scene.vol.name, '/');
     char view[64];
     snprintf(view, sizeof view, o.roll != 0 ? "%g,%g,%g" : "%g,%g", o.azimuth, o.elevation, o.roll);
-    snprintf(about, sizeof about, "%s %ux%u view %s zoom %g window %d,%d", base ? base + 1 : scene.vol.name, o.width,
-             o.height, view, o.zoom, scene.window.lo, scene.window.hi);
+    double lo, hi; /* in data units, as --window takes them */
+    vfp_window_data(&scene.vol, scene.window, &lo, &hi);
+    snprintf(about, sizeof about, "%s %ux%u view %s zoom %g window %.10g,%.10g", base ? base + 1 : scene.vol.name,
+             o.width, o.height, view, o.zoom, lo, hi);
     sim_ref_inputs_free(&in);
     sim_scene_free(&scene);
     if (traced != 0) {

@@ -308,7 +308,9 @@ void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)
         snprintf(rays, sizeof rays, " rays %u", s->params.rays);
     char lit[192];
     vfp_lighting_describe(p, &s->lighting, lit, sizeof lit);
-    snprintf(text, len, "%s %s%s%s %ux%u view %s zoom %g %s window %d,%d%s", base ? base + 1 : s->vol.name,
+    double lo, hi; /* in data units, as --window takes them */
+    vfp_window_data(&s->vol, s->window, &lo, &hi);
+    snprintf(text, len, "%s %s%s%s %ux%u view %s zoom %g %s window %.10g,%.10g%s", base ? base + 1 : s->vol.name,
              vf_mode_name(p->mode), options, rays, s->width, s->height, view, s->view.zoom_q16 / 65536.0, s->tf.name,
-             s->window.lo, s->window.hi, lit);
+             lo, hi, lit);
 }

@@ -94,6 +94,13 @@ vf_window_t vfp_default_window(const vfp_volume_t *vol)
     }
 }
 
+void vfp_window_data(const vfp_volume_t *vol, vf_window_t window, double *lo, double *hi)
+{
+    double slope = vol && vol->slope != 0.0 ? vol->slope : 1.0, inter = vol ? vol->inter : 0.0;
+    *lo = window.lo * slope + inter;
+    *hi = window.hi * slope + inter;
+}
+
 vfp_status_t vfp_parse_window(const vfp_volume_t *vol, const char *text, vf_window_t *window, char *err, size_t errlen)
 {
     char name[SHOWN_TEXT + 32];

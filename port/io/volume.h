@@ -56,6 +56,10 @@ vfp_status_t vfp_volume_downsampled(vfp_volume_t *dst, const vfp_volume_t *src, 
  * to their 99.99 percentile, but at most twice as far as the 99.5 percentile (docs/defaults.md; never lo == hi). */
 vf_window_t vfp_default_window(const vfp_volume_t *vol);
 
+/* A raw-value window in data units (after slope/intercept), as every summary prints it and --window takes it
+ * back: one unit everywhere, HU for calibrated CT. */
+void vfp_window_data(const vfp_volume_t *vol, vf_window_t window, double *lo, double *hi);
+
 /* Parse "LO,HI" in data units (after slope/intercept) into a raw-value window. Returns VFP_OK, or VFP_ERR with err. */
 vfp_status_t vfp_parse_window(const vfp_volume_t *vol, const char *text, vf_window_t *window, char *err, size_t errlen);
 

@@ -118,6 +118,17 @@ static void nifti_int16_little_with_scaling(void)
     CHECK_EQ(vol.core.spacing_q16[1], 262144); /* relative to the smallest, 0.5 */
     CHECK_NEAR(vol.slope, 2.0, 0);
     CHECK_NEAR(vol.inter, -10.0, 0);
+    /* One unit: the default window in data units, given back as --window, is the same raw window. */
+    vf_window_t w = vfp_default_window(&vol), back;
+    double lo, hi;
+    vfp_window_data(&vol, w, &lo, &hi);
+    CHECK_NEAR(lo, w.lo * 2.0 - 10.0, 0);
+    CHECK_NEAR(hi, w.hi * 2.0 - 10.0, 0);
+    char text[64], err[VFP_ERR_LEN];
+    snprintf(text, sizeof text, "%.10g,%.10g", lo, hi);
+    CHECK_MSG(vfp_parse_window(&vol, text, &back, err, sizeof err) == VFP_OK, "%s", err);
+    CHECK_EQ(back.lo, w.lo);
+    CHECK_EQ(back.hi, w.hi);
     fx_check_fixture(&vol, VF_VOXEL_I16);
 }
 
