@@ -14,7 +14,8 @@ need="$need libdrm-dev libusb-1.0-0-dev liblz4-dev libsdl2-dev libgpiod-dev"
 case "$for_what" in
   test) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf libc6-dev-arm64-cross libc6-dev-armhf-cross"
         need="$need valgrind umockdev libumockdev-dev xvfb xauth xdotool imagemagick"
-        need="$need gcc-arm-none-eabi qemu-system-arm" ;; # tests/mcu: the firmware for a Cortex-M4 board under qemu
+        need="$need gcc-arm-none-eabi qemu-system-arm" # tests/mcu: the firmware for a Cortex-M4 board under qemu
+        need="$need libvolpack1-dev" ;; # tests/peers: VolPack's example image against volfix
   # make test-hw: a Debian kernel in qemu (TCG), an initramfs from busybox, the gpio-sim module built out of tree
   hw) need="$need qemu-system-x86 busybox-static cpio kmod xz-utils gzip gcc-12 make binutils" ;;
   # make fuzz: clang and its libFuzzer, ASan and UBSan runtimes (compiler-rt)

@@ -104,6 +104,10 @@ void truth_trace(const ref_volume_t *vol, const truth_tf_t *tf, const truth_came
 void truth_trace_lit(const ref_volume_t *vol, const truth_tf_t *tf, const truth_camera_t *cam,
                      const truth_opts_t *opts, const truth_lit_t *lit, double px, double py, truth_acc_t *acc)
 {
+    if (opts->field && opts->field->filter != TRUTH_FILTER_TRILINEAR) {
+        truth_trace_field(tf, cam, opts, px, py, acc); /* unlit: truth_render_lit refuses a field with lighting */
+        return;
+    }
     acc->T = 1;
     acc->C[0] = acc->C[1] = acc->C[2] = 0;
     double o[3], d[3], t_in, t_out;
