@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "imgcmp.h"
+#include "io/numbers.h"
 #include "io/pngio.h"
 #include "io/volume.h"
 
@@ -23,17 +24,28 @@ int sim_cmd_diff(int argc, char **argv)
     int json = 0, max = -1, nfiles = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        char *end;
+        long long n;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
             return VFP_EXIT_OK;
         } else if (strcmp(a, "--json") == 0) {
             json = 1;
-        } else if (strcmp(a, "--diff") == 0 && v) {
+        } else if ((strcmp(a, "--diff") == 0 || strcmp(a, "--max") == 0) && !v) {
+            fprintf(stderr, "volfix-sim: diff: %s: missing value (see volfix-sim diff --help)\n", a);
+            return VFP_EXIT_ERR;
+        } else if ((strcmp(a, "--diff") == 0 || strcmp(a, "--max") == 0) && vfp_is_empty(v)) {
+            fprintf(stderr, "volfix-sim: diff: %s '': an empty value (see volfix-sim diff --help)\n", a);
+            return VFP_EXIT_ERR;
+        } else if (strcmp(a, "--diff") == 0) {
             diff_png = argv[++i];
-        } else if (strcmp(a, "--max") == 0 && v && (max = (int)strtol(v, &end, 10), *end == 0 && max >= 0)) {
+        } else if (strcmp(a, "--max") == 0) {
+            if (!vfp_parse_integer(v, 0, 255, &n)) {
+                fprintf(stderr, "volfix-sim: diff: --max %s: expected levels, an integer 0..255\n", v);
+                return VFP_EXIT_ERR;
+            }
+            max = (int)n;
             i++;
-        } else if (a[0] != '-' && nfiles < 2) {
+        } else if (a[0] != '-' && a[0] && nfiles < 2) {
             files[nfiles++] = a;
         } else {
             fprintf(stderr, "volfix-sim: diff: unexpected '%s' (see volfix-sim diff --help)\n", a);
@@ -45,6 +57,11 @@ int sim_cmd_diff(int argc, char **argv)
         return VFP_EXIT_ERR;
     }
     char err[VFP_ERR_LEN];
+    if (diff_png && (strcmp(diff_png, "-") == 0 || vfp_png_check_output(diff_png, err, sizeof err))) {
+        fprintf(stderr, "volfix-sim: diff: --diff %s\n", strcmp(diff_png, "-") == 0 ? "-: expected a file name (the "
+                        "report is on standard output)" : err);
+        return VFP_EXIT_ERR;
+    }
     uint8_t *img[2] = {NULL, NULL};
     uint32_t w[2], h[2];
     int exit_status = VFP_EXIT_OK;

@@ -63,24 +63,20 @@ static const char script[] =
     "unset multiplot\n";
 
 static vfp_status_t write_files(const char *dir, const truth_study_t *st, const char *about);
+
 static int run_gnuplot(const char *dir);
 
 int sim_cmd_ray(int argc, char **argv)
 {
     sim_opts_t o;
     sim_scene_t scene;
-    vfp_status_t status = sim_scene_command(&o, &scene, argc, argv, SIM_OPT_OUT | SIM_OPT_PIXEL | SIM_OPT_FILTER,
+    /* -o is checked before the volume is loaded, and the folder made when its files are written */
+    vfp_status_t status = sim_scene_command(&o, &scene, argc, argv,
+                                            SIM_OPT_OUT | SIM_OPT_OUT_DIR | SIM_OPT_PIXEL | SIM_OPT_FILTER,
                                             usage_head);
     if (status)
         return vfp_exit_status(status);
-    if (!o.out || (mkdir(o.out, 0777) != 0 && errno != EEXIST)) {
-        if (!o.out)
-            fprintf(stderr, "volfix-sim ray: no output folder (-o DIR)\n");
-        else
-            fprintf(stderr, "volfix-sim: %s: cannot make the folder\n", o.out);
-        sim_scene_free(&scene);
-        return VFP_EXIT_ERR;
-    }
+
     char about[512];
     double px = o.have_pixel ? o.pixel[0] : (o.width - 1) / 2.0, py = o.have_pixel ? o.pixel[1] : (o.height - 1) / 2.0;
     sim_ref_inputs_t in;
@@ -111,8 +107,10 @@ int sim_cmd_ray(int argc, char **argv)
     const char *base = strrchr(scene.vol.name, '/');
     char view[64];
     snprintf(view, sizeof view, o.roll != 0 ? "%g,%g,%g" : "%g,%g", o.azimuth, o.elevation, o.roll);
-    snprintf(about, sizeof about, "%s %ux%u view %s zoom %g window %d,%d, %s signal", base ? base + 1 : scene.vol.name,
-             o.width, o.height, view, o.zoom, scene.window.lo, scene.window.hi,
+    double lo, hi; /* in data units, as --window takes them */
+    vfp_window_data(&scene.vol, scene.window, &lo, &hi);
+    snprintf(about, sizeof about, "%s %ux%u view %s zoom %g window %.10g,%.10g, %s signal",
+             base ? base + 1 : scene.vol.name, o.width, o.height, view, o.zoom, lo, hi,
              truth_filter_name((truth_filter_t)o.truth_filter));
     sim_ref_inputs_free(&in);
     sim_scene_free(&scene);
@@ -173,6 +171,10 @@ static vfp_status_t close_file(FILE *f, const char *path)
 
 static vfp_status_t write_files(const char *dir, const truth_study_t *st, const char *about)
 {
+    if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "volfix-sim: -o %s: cannot make the folder: %s\n", dir, strerror(errno));
+        return VFP_ERR;
+    }
     char path[4096];
     FILE *f = open_in(dir, "ray.csv", path, sizeof path);
     if (!f)

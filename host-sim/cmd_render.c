@@ -1,5 +1,6 @@
 /* cmd_render.c: volfix-sim render: one image, with the fixed-point core, the double reference or the truth. */
 #include <stdio.h>
+#include <string.h>
 
 #include "commands.h"
 #include "io/pngio.h"
@@ -10,7 +11,7 @@ static const char usage_head[] =
     "usage: volfix-sim render VOLUME [options] -o OUT.png | --hash\n"
     "Render one image of VOLUME with the fixed-point core (or, with --reference, with the double-precision\n"
     "reference of the same algorithm, or with --truth, with the ground-truth ray caster) and write it as PNG.\n\n"
-    "  -o FILE              the PNG to write\n"
+    "  -o FILE              the PNG to write (- for standard output; then the summary goes to standard error)\n"
     "  --hash               print the frame's FNV-1a 64-bit hash over its pixel bytes (port/render/image.h), to\n"
     "                       compare frames across machines; with or without -o\n"
     "  --reference          use the double-precision reference renderer\n"
@@ -27,11 +28,6 @@ int sim_cmd_render(int argc, char **argv)
         sim_scene_command(&o, &scene, argc, argv, SIM_OPT_OUT | SIM_OPT_REF | SIM_OPT_TRUTH | SIM_OPT_HASH, usage_head);
     if (status)
         return vfp_exit_status(status);
-    if (!o.out && !o.hash) {
-        fprintf(stderr, "volfix-sim render: no output file (-o OUT.png, or --hash)\n");
-        sim_scene_free(&scene);
-        return VFP_EXIT_ERR;
-    }
     char err[VFP_ERR_LEN], about[512];
     if (o.truth)
         scene.params.rays = 1; /* the truth has no intermediate image: --rays does not apply */
@@ -54,10 +50,12 @@ int sim_cmd_render(int argc, char **argv)
         snprintf(truth, sizeof truth, " (ground truth%s%s)", o.truth_filter ? ", " : "",
                  o.truth_filter ? truth_filter_name((truth_filter_t)o.truth_filter) : "");
         const char *which = o.reference ? " (reference)" : o.truth ? truth : "";
+        /* with -o - the PNG is standard output, and the lines go to standard error */
+        FILE *lines = o.out && strcmp(o.out, "-") == 0 ? stderr : stdout;
         if (o.hash)
-            printf("%016llx %s%s\n", (unsigned long long)hash, about, which);
+            fprintf(lines, "%016llx %s%s\n", (unsigned long long)hash, about, which);
         if (o.out)
-            printf("%s: %s%s\n", o.out, about, which);
+            fprintf(lines, "%s: %s%s\n", o.out, about, which);
     }
     sim_scene_free(&scene);
     return vfp_exit_status(status);

@@ -5,6 +5,7 @@
  * when they are there. --quick is the subset make test runs (under two minutes); the full study adds scenes,
  * volumes and views.
  */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,6 +13,7 @@
 #include <unistd.h>
 
 #include "commands.h"
+#include "io/numbers.h"
 #include "study.h"
 
 static const char usage[] =
@@ -214,38 +216,55 @@ int sim_cmd_study(int argc, char **argv)
     st->threads = 2;
     st->have_valgrind = -1;
     for (int i = 0; i < argc; i++) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        long long n;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
             free(st);
             return VFP_EXIT_OK;
-        } else if (strcmp(argv[i], "--quick") == 0) {
+        } else if (strcmp(a, "--quick") == 0) {
             st->quick = 1;
-        } else if (strcmp(argv[i], "--lighting-only") == 0) {
+            continue;
+        } else if (strcmp(a, "--lighting-only") == 0) {
             st->lighting_only = 1;
-        } else if (strcmp(argv[i], "--order2-only") == 0) {
+            continue;
+        } else if (strcmp(a, "--order2-only") == 0) {
             st->order2_only = 1;
-        } else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
-            st->dir = argv[++i];
-        } else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
-            st->threads = atoi(argv[++i]);
-            if (st->threads < 1 || st->threads > 16) {
-                fprintf(stderr, "volfix-sim study: --threads %s: expected 1..16\n", argv[i]);
-                free(st);
-                return VFP_EXIT_ERR;
+            continue;
+        } else if ((strcmp(a, "-o") == 0 || strcmp(a, "--threads") == 0) && vfp_is_empty(v)) {
+            fprintf(stderr, "volfix-sim study: %s '': an empty value (see --help)\n", a);
+        } else if (strcmp(a, "-o") == 0 && v) {
+            st->dir = v;
+            i++;
+            continue;
+        } else if (strcmp(a, "--threads") == 0 && v) {
+            if (vfp_parse_integer(v, 1, 16, &n)) {
+                st->threads = (int)n;
+                i++;
+                continue;
             }
+            fprintf(stderr, "volfix-sim study: --threads %s: expected an integer 1..16\n", v);
         } else {
-            fprintf(stderr, "volfix-sim study: %s: unknown option or missing value (see --help)\n", argv[i]);
-            free(st);
-            return VFP_EXIT_ERR;
+            fprintf(stderr, "volfix-sim study: %s: unknown option or missing value (see --help)\n", a);
         }
+        free(st);
+        return VFP_EXIT_ERR;
     }
     if (!st->dir) {
         fprintf(stderr, "volfix-sim study: no output directory (-o DIR)\n");
         free(st);
         return VFP_EXIT_ERR;
     }
-    if (mkdir(st->dir, 0755) != 0 && !exists(st->dir)) {
-        fprintf(stderr, "volfix-sim study: %s: cannot create the directory\n", st->dir);
+    /* everything the study writes goes into DIR: made now, and known writable before the first minute of work */
+    struct stat dir_st;
+    if (mkdir(st->dir, 0777) != 0 && errno != EEXIST) {
+        fprintf(stderr, "volfix-sim study: -o %s: cannot make the directory: %s\n", st->dir, strerror(errno));
+        free(st);
+        return VFP_EXIT_ERR;
+    }
+    if (stat(st->dir, &dir_st) != 0 || !S_ISDIR(dir_st.st_mode) || access(st->dir, W_OK) != 0) {
+        fprintf(stderr, "volfix-sim study: -o %s: expected a directory the study can write into%s\n", st->dir,
+                stat(st->dir, &dir_st) == 0 && !S_ISDIR(dir_st.st_mode) ? " (it is a file)" : "");
         free(st);
         return VFP_EXIT_ERR;
     }

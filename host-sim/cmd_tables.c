@@ -11,6 +11,7 @@
 
 #include "commands.h"
 #include "options.h"
+#include "io/numbers.h"
 #include "io/pngio.h"
 #include "ref/ref.h"
 #include "render/render_mt.h"
@@ -135,7 +136,7 @@ int sim_cmd_tables(int argc, char **argv)
     char err[VFP_ERR_LEN];
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        char *end = NULL;
+        long long k;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
             return VFP_EXIT_OK;
@@ -148,6 +149,9 @@ int sim_cmd_tables(int argc, char **argv)
         } else if (!v) {
             fprintf(stderr, "volfix-sim tables: %s: unknown option or missing value (see --help)\n", a);
             return VFP_EXIT_ERR;
+        } else if (vfp_is_empty(v)) {
+            fprintf(stderr, "volfix-sim tables: %s '': an empty value (expected a value; see --help)\n", a);
+            return VFP_EXIT_ERR;
         } else if (strcmp(a, "--preset") == 0) {
             preset = v;
         } else if (strcmp(a, "--tf") == 0) {
@@ -155,26 +159,25 @@ int sim_cmd_tables(int argc, char **argv)
         } else if (strcmp(a, "-o") == 0) {
             out = v;
         } else if (strcmp(a, "--size") == 0) {
-            n = strtol(v, &end, 10);
-            if (*end || n < VF_MIN_TABLE || n > VF_MAX_TABLE) {
+            if (!vfp_parse_integer(v, VF_MIN_TABLE, VF_MAX_TABLE, &k)) {
                 fprintf(stderr, "volfix-sim tables: --size %s: expected an integer from 2 to 1024\n", v);
                 return VFP_EXIT_ERR;
             }
+            n = (long)k;
         } else if (strcmp(a, "--bits") == 0) {
-            bits = strtol(v, &end, 10);
-            if (*end || (bits != 8 && bits != 16)) {
+            if (!vfp_parse_integer(v, 8, 16, &k) || (k != 8 && k != 16)) {
                 fprintf(stderr, "volfix-sim tables: --bits %s: expected 8 or 16\n", v);
                 return VFP_EXIT_ERR;
             }
+            bits = (long)k;
         } else if (strcmp(a, "--repeat") == 0) {
-            repeat = strtol(v, &end, 10);
-            if (*end || repeat < 1 || repeat > 1000) {
-                fprintf(stderr, "volfix-sim tables: --repeat %s: expected 1..1000\n", v);
+            if (!vfp_parse_integer(v, 1, 1000, &k)) {
+                fprintf(stderr, "volfix-sim tables: --repeat %s: expected an integer 1..1000\n", v);
                 return VFP_EXIT_ERR;
             }
+            repeat = (long)k;
         } else if (strcmp(a, "--slab") == 0) {
-            slab = strtod(v, &end);
-            if (*end || !(slab >= 1.0 / 64 && slab <= 128)) {
+            if (!vfp_parse_number(v, 1.0 / 64, 128, &slab)) {
                 fprintf(stderr, "volfix-sim tables: --slab %s: expected a length in voxels, 1/64..128\n", v);
                 return VFP_EXIT_ERR;
             }
@@ -183,6 +186,16 @@ int sim_cmd_tables(int argc, char **argv)
             return VFP_EXIT_ERR;
         }
         i++;
+    }
+    if (out && (strcmp(out, "-") == 0 || vfp_png_check_output(out, err, sizeof err))) {
+        fprintf(stderr, "volfix-sim tables: -o %s\n", strcmp(out, "-") == 0 ? "-: expected a file name (the report "
+                        "is on standard output)" : err);
+        return VFP_EXIT_ERR;
+    }
+    vfp_tf_t check;
+    if (preset && vfp_tf_preset(&check, preset, err, sizeof err)) {
+        fprintf(stderr, "volfix-sim tables: --preset %s: %s\n", preset, err);
+        return VFP_EXIT_ERR;
     }
     if (preset && tf_file) {
         fprintf(stderr, "volfix-sim tables: give --preset or --tf, not both\n");

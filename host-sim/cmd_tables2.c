@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "io/numbers.h"
 #include "io/tf.h"
 #include "ref/ref.h"
 #include "render/render_mt.h"
@@ -107,12 +108,11 @@ static int bad(const char *option, const char *value, const char *expected)
 int sim_cmd_tables_order2(int argc, char **argv)
 {
     const char *preset = NULL, *tf_file = NULL;
-    long n2 = 64, n = 256, bits = 16, repeat = 5, threads = 1;
+    long long n2 = 64, n = 256, bits = 16, repeat = 5, threads = 1;
     double slab = 1.0;
     int json = 0, lit = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        char *end = NULL;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
             return VFP_EXIT_OK;
@@ -122,33 +122,30 @@ int sim_cmd_tables_order2(int argc, char **argv)
         } else if (!v) {
             fprintf(stderr, "volfix-sim tables: %s: unknown option or missing value (see --help)\n", a);
             return VFP_EXIT_ERR;
+        } else if (vfp_is_empty(v)) {
+            fprintf(stderr, "volfix-sim tables: %s '': an empty value (expected a value; see --help)\n", a);
+            return VFP_EXIT_ERR;
         } else if (strcmp(a, "--preset") == 0) {
             preset = v;
         } else if (strcmp(a, "--tf") == 0) {
             tf_file = v;
         } else if (strcmp(a, "--size") == 0) {
-            n2 = strtol(v, &end, 10);
-            if (*end || n2 < VF_MIN_TABLE2 || n2 > VF_MAX_TABLE2)
+            if (!vfp_parse_integer(v, VF_MIN_TABLE2, VF_MAX_TABLE2, &n2))
                 return bad(a, v, "an integer from 16 to 128");
         } else if (strcmp(a, "--table-size") == 0) {
-            n = strtol(v, &end, 10);
-            if (*end || n < VF_MIN_TABLE || n > VF_MAX_TABLE)
+            if (!vfp_parse_integer(v, VF_MIN_TABLE, VF_MAX_TABLE, &n))
                 return bad(a, v, "an integer from 2 to 1024");
         } else if (strcmp(a, "--bits") == 0) {
-            bits = strtol(v, &end, 10);
-            if (*end || (bits != 8 && bits != 16))
+            if (!vfp_parse_integer(v, 8, 16, &bits) || (bits != 8 && bits != 16))
                 return bad(a, v, "8 or 16");
         } else if (strcmp(a, "--repeat") == 0) {
-            repeat = strtol(v, &end, 10);
-            if (*end || repeat < 1 || repeat > 1000)
+            if (!vfp_parse_integer(v, 1, 1000, &repeat))
                 return bad(a, v, "1..1000");
         } else if (strcmp(a, "--threads") == 0) {
-            threads = strtol(v, &end, 10);
-            if (*end || threads < 1 || threads > VFP_MAX_THREADS)
+            if (!vfp_parse_integer(v, 1, VFP_MAX_THREADS, &threads))
                 return bad(a, v, "an integer from 1 to 16");
         } else if (strcmp(a, "--slab") == 0) {
-            slab = strtod(v, &end);
-            if (*end || !(slab >= 1.0 / 64 && slab <= 64))
+            if (!vfp_parse_number(v, 1.0 / 64, 64, &slab))
                 return bad(a, v, "a length in voxels, 1/64..64");
         } else {
             fprintf(stderr, "volfix-sim tables: %s: unknown option (see --help)\n", a);
@@ -183,7 +180,7 @@ int sim_cmd_tables_order2(int argc, char **argv)
         have_scratch = have_scratch && jobs[t].scratch;
     }
     if (!table || (lit && !lit_table) || !ref || !times || !have_scratch) {
-        fprintf(stderr, "volfix-sim: out of memory for a %ld^3 order-2 table\n", n2);
+        fprintf(stderr, "volfix-sim: out of memory for a %lld^3 order-2 table\n", n2);
         goto done;
     }
     vf_status_t s = VF_OK;
@@ -222,8 +219,8 @@ int sim_cmd_tables_order2(int argc, char **argv)
     const size_t table_bytes = entries * 4 * value_bytes, lit_bytes = lit ? 2 * table_bytes : 0;
     const size_t pieces_bytes = (size_t)n * n * 16 * (lit ? 2 : 1);
     if (json) {
-        printf("{\"order\": 2, \"size2\": %ld, \"table_size\": %ld, \"preset\": \"%s\", \"slab\": %g, \"bits\": %ld, "
-               "\"lit\": %s, \"threads\": %ld, \"repeat\": %ld, \"build_ms\": %.3f, \"build_ms_min\": %.3f, "
+        printf("{\"order\": 2, \"size2\": %lld, \"table_size\": %lld, \"preset\": \"%s\", \"slab\": %g, \"bits\": %lld, "
+               "\"lit\": %s, \"threads\": %lld, \"repeat\": %lld, \"build_ms\": %.3f, \"build_ms_min\": %.3f, "
                "\"table_bytes\": %zu, \"lit_bytes\": %zu, \"pieces_bytes\": %zu, \"max_err_lsb\": %.3f, "
                "\"mean_err_lsb\": %.4f, \"reference_ms\": %.1f",
                n2, n, tf.name, slab, bits, lit ? "true" : "false", threads, repeat, median, times[0], table_bytes,
@@ -232,15 +229,15 @@ int sim_cmd_tables_order2(int argc, char **argv)
             printf(", \"lit_max_err_lsb\": %.3f, \"lit_mean_err_lsb\": %.4f", lit_worst, lit_mean);
         printf("}\n");
     } else {
-        printf("order-2 table, %s, %ld^3 entries from a %ld-entry 2D table, slabs of 2 x %g voxels%s\n", tf.name, n2, n,
+        printf("order-2 table, %s, %lld^3 entries from a %lld-entry 2D table, slabs of 2 x %g voxels%s\n", tf.name, n2, n,
                slab, lit ? ", lit" : "");
-        printf("  build: %.3f ms (median of %ld, fastest %.3f) on %ld thread%s\n", median, repeat, times[0], threads,
+        printf("  build: %.3f ms (median of %lld, fastest %.3f) on %lld thread%s\n", median, repeat, times[0], threads,
                threads > 1 ? "s" : "");
-        printf("  memory: 3D table %zu bytes (%ld-bit values), pieces %zu bytes (Q.30)\n", table_bytes, bits,
+        printf("  memory: 3D table %zu bytes (%lld-bit values), pieces %zu bytes (Q.30)\n", table_bytes, bits,
                pieces_bytes);
         if (lit)
             printf("  lighting values: %zu bytes more\n", lit_bytes);
-        printf("  against the double build (%.0f ms): max %.3f, mean %.4f LSB of %ld-bit values\n", ref_ms, worst,
+        printf("  against the double build (%.0f ms): max %.3f, mean %.4f LSB of %lld-bit values\n", ref_ms, worst,
                mean, bits);
         if (lit)
             printf("  its lighting values: max %.3f, mean %.4f LSB\n", lit_worst, lit_mean);

@@ -48,12 +48,19 @@ enum {
     SIM_OPT_PIXEL = 512,  /* --pixel X,Y */
     SIM_OPT_HASH = 1024,  /* --hash */
     SIM_OPT_ROUNDS = 2048, /* --rounds */
-    SIM_OPT_FILTER = 4096, /* --truth-filter for a command that always uses the truth's reconstruction (ray) */
+    SIM_OPT_OUT_DIR = 4096, /* -o names a folder (made when its files are written), not a PNG */
+    SIM_OPT_FILTER = 8192,  /* --truth-filter for a command that always uses the truth's reconstruction (ray) */
 };
 
 /* Parse argv (after the command name). Returns VFP_OK, VFP_HELP_SHOWN when --help was asked (usage printed), or
  * VFP_ERR after printing a one-line error to stderr. */
 vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char *usage);
+
+/* What the parsed options promise to write and read, checked before any work (a volume loaded, a frame
+ * rendered): -o and --diff writable (vfp_png_check_output; "-", standard output, for render's -o only), -o DIR
+ * made, render given -o or --hash, --pixel inside the image, the window two different numbers, the preset
+ * known. Returns VFP_OK, or VFP_ERR after printing a one-line error. */
+vfp_status_t sim_check_options(const sim_opts_t *o, unsigned groups);
 
 /* "point", "preint1", "preclass" or "preint2". Returns VFP_OK, or VFP_ERR for another text. */
 vfp_status_t sim_parse_mode(const char *text, vf_mode_t *mode);

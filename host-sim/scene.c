@@ -25,6 +25,8 @@ vfp_status_t sim_scene_command(sim_opts_t *opts, sim_scene_t *scene, int argc, c
     char usage[8192], err[VFP_ERR_LEN];
     snprintf(usage, sizeof usage, "%s%s", usage_head, sim_scene_help);
     vfp_status_t status = sim_parse(opts, argc, argv, SIM_OPT_SCENE | groups, usage);
+    if (status == VFP_OK)
+        status = sim_check_options(opts, SIM_OPT_SCENE | groups);
     if (status == VFP_OK && (status = sim_scene_load(scene, opts, err, sizeof err)) != VFP_OK)
         fprintf(stderr, "volfix-sim: %s\n", err);
     return status;
@@ -33,16 +35,15 @@ vfp_status_t sim_scene_command(sim_opts_t *opts, sim_scene_t *scene, int argc, c
 vfp_status_t sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size_t errlen)
 {
     memset(s, 0, sizeof *s);
+    /* the transfer function first: a mistake in it is found before a large volume is read */
+    vfp_status_t status = o->tf_file ? vfp_tf_load(&s->tf, o->tf_file, err, errlen)
+                                     : vfp_tf_preset(&s->tf, o->preset ? o->preset : "ramp", err, errlen);
+    if (status)
+        return VFP_ERR;
     if (vfp_volume_load(&s->vol, o->volume, &o->load, err, errlen))
         return VFP_ERR;
     s->window = vfp_default_window(&s->vol);
     if (o->window && vfp_parse_window(&s->vol, o->window, &s->window, err, errlen)) {
-        vfp_volume_free(&s->vol);
-        return VFP_ERR;
-    }
-    vfp_status_t status = o->tf_file ? vfp_tf_load(&s->tf, o->tf_file, err, errlen)
-                                     : vfp_tf_preset(&s->tf, o->preset ? o->preset : "ramp", err, errlen);
-    if (status) {
         vfp_volume_free(&s->vol);
         return VFP_ERR;
     }
@@ -327,7 +328,9 @@ void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)
         snprintf(rays, sizeof rays, " rays %u", s->params.rays);
     char lit[192];
     vfp_lighting_describe(p, &s->lighting, lit, sizeof lit);
-    snprintf(text, len, "%s %s%s%s %ux%u view %s zoom %g %s window %d,%d%s", base ? base + 1 : s->vol.name,
+    double lo, hi; /* in data units, as --window takes them */
+    vfp_window_data(&s->vol, s->window, &lo, &hi);
+    snprintf(text, len, "%s %s%s%s %ux%u view %s zoom %g %s window %.10g,%.10g%s", base ? base + 1 : s->vol.name,
              vf_mode_name(p->mode), options, rays, s->width, s->height, view, s->view.zoom_q16 / 65536.0, s->tf.name,
-             s->window.lo, s->window.hi, lit);
+             lo, hi, lit);
 }

@@ -4,6 +4,7 @@
  * the long name tables (board_internal.h). */
 #include "board_internal.h"
 #include "io/printable.h"
+#include "io/readfile.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -46,6 +47,14 @@ static int index_of(const char *const *names, int count, const char *name);
 static vfp_status_t copy_string(vfpi_board_parser_t *p, char *dst, size_t size, const char *keyname, const char *value);
 static void join_names(char *out, size_t size, const char *const *names, int count, const char *last);
 
+/* A message that quotes a path, made one printable line; returns VFP_ERR. */
+static vfp_status_t printable_err(char *err, size_t errlen)
+{
+    if (errlen)
+        vfp_printable(err);
+    return VFP_ERR;
+}
+
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Public functions */
 
@@ -65,34 +74,25 @@ vfp_status_t vfp_board_load(vfp_board_t *board, const char *path, char *err, siz
 
     vfp_status_t status = VFP_OK;
     char *text = NULL;
-    size_t cap = 0;
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        status = vfpi_board_fail(p, 0, "cannot open: %s", strerror(errno));
-        goto out;
+    size_t size;
+    if (vfp_read_text(path, VFP_CAP_BOARD, "board file", &text, &size, err, errlen)) {
+        free(p);
+        return printable_err(err, errlen);
     }
-    for (;;) {
-        errno = 0;
-        ssize_t n = getline(&text, &cap, f);
-        if (n < 0) {
-            if (ferror(f))
-                status = vfpi_board_fail(p, 0, "cannot read: %s", strerror(errno ? errno : EIO));
-            break;
-        }
+    unsigned nul = vfp_text_nul_line(text, size);
+    char *cursor = text, *line;
+    while ((line = vfp_text_next_line(&cursor)) != NULL) {
         p->line++;
-        if ((size_t)n != strlen(text)) {
+        if ((unsigned)p->line == nul) {
             status = vfpi_board_fail(p, p->line, "expected text, found a NUL byte");
             break;
         }
-        if ((status = parse_line(p, text)) != VFP_OK)
+        if ((status = parse_line(p, line)) != VFP_OK)
             break;
     }
     if (status == VFP_OK)
         status = vfpi_board_finish(p);
-out:
     free(text);
-    if (f)
-        fclose(f);
     free(p);
     return status;
 }
@@ -231,9 +231,11 @@ static vfp_status_t set_top(vfpi_board_parser_t *p, int key, const char *keyname
         return copy_string(p, b->display_device, sizeof b->display_device, keyname, value);
     case T_WIDTH:
     case T_HEIGHT:
-        if (!vfpi_board_parse_long(value, 10, 1, 16384, &n))
-            return vfpi_board_fail(p, p->line, "%s: expected a size in pixels from 1 to 16384, found '%.60s'", keyname,
-                                   value);
+        /* the renderer draws images of at most VF_MAX_IMAGE a side: a larger board is refused here, naming the key,
+         * rather than at the first frame */
+        if (!vfpi_board_parse_long(value, 10, 1, VF_MAX_IMAGE, &n))
+            return vfpi_board_fail(p, p->line, "%s: expected a size in pixels from 1 to %d, found '%.60s'", keyname,
+                                   VF_MAX_IMAGE, value);
         *(key == T_WIDTH ? &b->width : &b->height) = (uint32_t)n;
         return VFP_OK;
     case T_FORMAT:

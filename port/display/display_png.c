@@ -59,9 +59,9 @@ static vfp_status_t png_open(vfp_display_t *d, const vfp_board_t *board, char *e
     d->priv = NULL;
     const char *dir = board->display_device[0] ? board->display_device : DEFAULT_DIR;
     uint32_t bytes = vf_format_bytes(board->format);
-    if (board->width == 0 || board->height == 0 || board->width > 16384 || board->height > 16384) {
-        snprintf(err, errlen, "%s: display 'png' needs a size from 1x1 to 16384x16384 (the board gives %ux%u)", dir,
-                 board->width, board->height);
+    if (board->width == 0 || board->height == 0 || board->width > VF_MAX_IMAGE || board->height > VF_MAX_IMAGE) {
+        snprintf(err, errlen, "%s: display 'png' needs a size from 1x1 to %dx%d (the board gives %ux%u)", dir,
+                 VF_MAX_IMAGE, VF_MAX_IMAGE, board->width, board->height);
         return VFP_ERR;
     }
     if (bytes == 0) {

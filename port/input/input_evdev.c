@@ -1,6 +1,7 @@
 /* input_evdev.c: knobs and buttons that the kernel already decodes: the rotary-encoder overlay (EV_REL, REL_X or
  * REL_DIAL, each event whole detents) and gpio-keys (EV_KEY press and release). Every device the board names is
- * opened non-blocking; several controls may share one (knobs are told apart by axis, buttons by key code).
+ * opened non-blocking and must answer EVIOCGVERSION (a path to something else is refused at open); several
+ * controls may share one (knobs are told apart by axis, buttons by key code).
  *
  * read() follows LVGL's evdev driver: drain every device into state, then report. Turns are summed per knob into
  * one event per read (a fast spin is one event of many detents, not a queue the viewer lags behind); presses and
@@ -158,6 +159,20 @@ static vfp_status_t evdev_open(vfp_input_t *in, const vfp_board_t *board, const 
                      : e == ENOENT ? " (is the overlay in config.txt, and the path right? see ls /dev/input/by-path)"
                                    : "");
             while (d-- > 0)
+                close(fds[d]);
+            in->ops = &vfp_input_evdev_ops;
+            in->priv = NULL;
+            return VFP_ERR;
+        }
+        /* An event device answers EVIOCGVERSION; a file that does not know the request (ENOTTY: /dev/zero,
+         * /dev/null, a regular file, a FIFO, a tty) is not one, and read from as one it would give endless or no
+         * events. Other failures pass: umockdev's emulated devices answer every request it has no recording of
+         * with ENOENT, and the axis and key checks below are skipped for them the same way. */
+        int version;
+        if (ioctl(fds[d], EVIOCGVERSION, &version) != 0 && (errno == ENOTTY || errno == EINVAL)) {
+            snprintf(err, errlen, "%s: not an input event device (it does not answer EVIOCGVERSION; expected "
+                     "a /dev/input/event* device, e.g. /dev/input/by-path/platform-rotary@11-event)", paths[d]);
+            for (; d >= 0; d--)
                 close(fds[d]);
             in->ops = &vfp_input_evdev_ops;
             in->priv = NULL;

@@ -12,6 +12,7 @@
 #include "input.h"
 #include "input_backends.h"
 #include "io/printable.h"
+#include "io/readfile.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -268,42 +269,15 @@ static int parse_int(const char *s, long long min, long long max, long long *out
 
 static char *read_file(const char *path, char *err, size_t errlen)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+    char *text;
+    size_t len;
+    if (vfp_read_text(path, VFP_CAP_SCRIPT, "knob script", &text, &len, err, errlen))
+        return NULL;
+    unsigned nul = vfp_text_nul_line(text, len);
+    if (nul) {
+        snprintf(err, errlen, "%s:%u: expected text, found a NUL byte", path, nul);
+        free(text);
         return NULL;
     }
-    size_t len = 0, cap = 4096;
-    char *text = malloc(cap);
-    if (!text)
-        snprintf(err, errlen, "%s: out of memory", path);
-    while (text) {
-        len += fread(text + len, 1, cap - len - 1, f);
-        if (ferror(f)) {
-            snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno ? errno : EIO));
-            free(text);
-            text = NULL;
-            break;
-        }
-        if (feof(f)) {
-            text[len] = '\0';
-            if (strlen(text) != len) {
-                snprintf(err, errlen, "%s: expected text, found a NUL byte", path);
-                free(text);
-                text = NULL;
-            }
-            break;
-        }
-        if (len + 1 == cap) {
-            char *grown = realloc(text, cap * 2);
-            if (!grown) {
-                snprintf(err, errlen, "%s: out of memory", path);
-                free(text);
-            }
-            text = grown;
-            cap *= 2;
-        }
-    }
-    fclose(f);
     return text;
 }

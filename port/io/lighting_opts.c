@@ -1,6 +1,7 @@
 /* lighting_opts.c: the lighting options of volfix-sim and volfix, and the lighting they make (see
  * lighting_opts.h). */
 #include "lighting_opts.h"
+#include "numbers.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -25,24 +26,11 @@ static uint16_t unorm16(double v)
     return (uint16_t)lround(v * 65535);
 }
 
-/* Exactly `count` finite numbers separated by commas, nothing else: the one numeric form these options take. */
+/* Exactly `count` finite numbers separated by commas, nothing else: the one numeric form these options take
+ * (numbers.h, shared with every other option of both programs). */
 static int number_list(const char *text, double *out, int count)
 {
-    const char *p = text;
-    if (!text)
-        return -1;
-    for (int n = 0; n < count; n++) {
-        char *end;
-        if (*p == 0 || *p == ',' || *p == ' ')
-            return -1;
-        out[n] = strtod(p, &end);
-        if (end == p || !isfinite(out[n]))
-            return -1;
-        if (n + 1 < count && *end != ',')
-            return -1;
-        p = end + (n + 1 < count);
-    }
-    return *p ? -1 : 0;
+    return vfp_parse_list(text, out, count, count) == count ? 0 : -1;
 }
 
 static vfp_status_t expected(char *err, size_t errlen, const char *form)

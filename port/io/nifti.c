@@ -149,7 +149,7 @@ static vfp_status_t parse_header(vfp_volume_t *vol, const unsigned char *hdr, in
         off = HDR_BYTES;
     if (!gzip) {
         struct stat st;
-        if (stat(path, &st) == 0 && off > (double)st.st_size)
+        if (vfpi_stat(path, &st) == 0 && off > (double)st.st_size)
             return vfpi_fail(err, errlen, path, 0, "vox_offset %.0f is beyond the end of the file (%lld bytes)", off,
                              (long long)st.st_size);
     }

@@ -135,7 +135,7 @@ vfp_status_t vfpi_load_nrrd(vfp_volume_t *vol, const char *path, char *err, size
     memset(&h, 0, sizeof h);
     h.path = path;
     char *line = malloc(MAX_LINE + 1);
-    FILE *file = fopen(path, "rb");
+    FILE *file = vfpi_fopen(path);
     vfp_status_t rc;
     if (!line)
         rc = vfpi_fail(err, errlen, path, 0, "out of memory");

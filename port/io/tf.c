@@ -1,7 +1,10 @@
 /* tf.c: transfer-function files, presets, and their conversion to the core's control points (see tf.h). */
 #include "tf.h"
+#include "numbers.h"
+#include "readfile.h"
 
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -32,8 +35,9 @@ static const preset_t presets[] = {
       {0.28, 1, 0.5, 0.1, 0}, {0.30, 1, 0.5, 0.1, 0.9}, {0.32, 1, 0.5, 0.1, 0},
       {0.53, 0.2, 1, 0.3, 0}, {0.55, 0.2, 1, 0.3, 0.9}, {0.57, 0.2, 1, 0.3, 0},
       {0.78, 1, 1, 1, 0}, {0.80, 1, 1, 1, 1}, {0.82, 1, 1, 1, 0}}, 0},
-    /* CT: with the default window (0.5 to 99.5 percentiles) air sits near 0, soft tissue near 0.42 and bone
-     * from about 0.55 up; the skin layer is the partial-volume ramp between air and tissue. */
+    /* CT, window-relative: with the default window (docs/defaults.md) air sits near 0, soft tissue of
+     * uncalibrated CT (cthead) across the skin peak at 0.30-0.40 and bone from about 0.5 up; the skin layer is
+     * the partial-volume ramp between air and tissue. */
     {"ct-bone", "CT: bone, ivory and opaque; soft tissue and air clear", 4,
      {{0.0, 1, 0.95, 0.85, 0}, {0.52, 1, 0.95, 0.85, 0}, {0.62, 1, 0.95, 0.85, 0.5}, {1.0, 1, 1, 1, 0.9}}, 1},
     {"ct-skin-bone", "CT: a thin translucent skin over opaque bone", 7,
@@ -104,26 +108,42 @@ static vfp_status_t look_line(const char *word, const char *line, vfp_tf_look_t 
     return VFP_OK;
 }
 
+/* A control point's line: exactly five numbers separated by blanks, each read by the options' strict parser
+ * (decimal and finite: "0x10", "nan" and "1junk" are not numbers here either). Returns 1 with *p filled, else 0. */
+static int point_line(char *line, vfp_tf_point_t *p)
+{
+    double v[5];
+    int n = 0;
+    char *save = NULL;
+    for (char *word = strtok_r(line, " \t\r", &save); word; word = strtok_r(NULL, " \t\r", &save)) {
+        if (n == 5 || !vfp_parse_number(word, -DBL_MAX, DBL_MAX, &v[n]))
+            return 0;
+        n++;
+    }
+    if (n != 5)
+        return 0;
+    p->s = v[0], p->r = v[1], p->g = v[2], p->b = v[3], p->a = v[4];
+    return 1;
+}
+
 vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errlen)
 {
     memset(tf, 0, sizeof *tf);
     tf->look.shade = -1;
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+    char *text;
+    size_t size;
+    if (vfp_read_text(path, VFP_CAP_TF, "transfer function", &text, &size, err, errlen))
         return VFP_ERR;
-    }
     const char *base = strrchr(path, '/');
     snprintf(tf->name, sizeof tf->name, "%s", base ? base + 1 : path);
-    char *line = NULL;
-    size_t cap = 0;
-    ssize_t len;
     int lineno = 0;
     vfp_status_t status = VFP_OK;
-    /* Whole lines however long: a fixed buffer would read the rest of a long comment as a line of its own. */
-    while (status == VFP_OK && (len = getline(&line, &cap, f)) >= 0) {
+    unsigned nul = vfp_text_nul_line(text, size);
+    char *cursor = text, *line;
+    /* whole lines however long, each read once from the text in memory */
+    while (status == VFP_OK && (line = vfp_text_next_line(&cursor)) != NULL) {
         lineno++;
-        if ((size_t)len != strlen(line)) {
+        if ((unsigned)lineno == nul) {
             snprintf(err, errlen, "%s:%d: expected text, found a NUL byte", path, lineno);
             status = VFP_ERR;
             break;
@@ -155,9 +175,7 @@ vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errle
             continue;
         }
         vfp_tf_point_t p;
-        char extra[2];
-        int got = sscanf(line, "%lf %lf %lf %lf %lf %1s", &p.s, &p.r, &p.g, &p.b, &p.a, extra);
-        if (got != 5) {
+        if (!point_line(line, &p)) {
             snprintf(err, errlen, "%s:%d: expected a control point 'scalar r g b a' (five numbers)", path, lineno);
             status = VFP_ERR;
         } else if (!isfinite(p.s)) {
@@ -177,12 +195,7 @@ vfp_status_t vfp_tf_load(vfp_tf_t *tf, const char *path, char *err, size_t errle
             tf->points[tf->count++] = p;
         }
     }
-    if (status == VFP_OK && ferror(f)) {
-        snprintf(err, errlen, "%s: read error: %s", path, strerror(errno));
-        status = VFP_ERR;
-    }
-    free(line);
-    fclose(f);
+    free(text);
     if (status == VFP_OK && tf->count == 0) {
         snprintf(err, errlen, "%s: no control points (expected lines 'scalar r g b a')", path);
         status = VFP_ERR;

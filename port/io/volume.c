@@ -22,8 +22,9 @@
 #define SHOWN_TEXT 64 /* characters of a bad option value repeated in its message */
 
 /* The default window of 16-bit data: these percentiles of the raw values, in thousandths. */
-#define WINDOW_LO_PERMILLE 5
-#define WINDOW_HI_PERMILLE 995
+#define WINDOW_LO_PERMYRIAD 50      /* 16-bit default window (percentile_window): the 0.5 percentile, */
+#define WINDOW_BULK_PERMYRIAD 9950  /* the 99.5 percentile (the bulk of the data), */
+#define WINDOW_TAIL_PERMYRIAD 9999  /* and the 99.99 percentile (sparse bright structures) */
 
 /**********************
  *  STATIC PROTOTYPES
@@ -53,7 +54,10 @@ vfp_status_t vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load
         return vfpi_fail(err, errlen, "(no file)", 0, "no volume file or phantom spec given");
     snprintf(vol->name, sizeof vol->name, "%s", spec);
 
-    vfp_status_t rc = load(vol, spec, opts, err, errlen);
+    vfp_status_t rc = vfpi_spool_begin(spec, err, errlen);
+    if (rc == VFP_OK)
+        rc = load(vol, spec, opts, err, errlen);
+    vfpi_spool_end();
     if (rc == VFP_OK && opts && opts->downsample > 1)
         rc = vfpi_downsample(vol, opts->downsample, err, errlen);
     if (rc == VFP_OK)
@@ -88,6 +92,13 @@ vf_window_t vfp_default_window(const vfp_volume_t *vol)
     default:
         return percentile_window(vol);
     }
+}
+
+void vfp_window_data(const vfp_volume_t *vol, vf_window_t window, double *lo, double *hi)
+{
+    double slope = vol && vol->slope != 0.0 ? vol->slope : 1.0, inter = vol ? vol->inter : 0.0;
+    *lo = window.lo * slope + inter;
+    *hi = window.hi * slope + inter;
 }
 
 vfp_status_t vfp_parse_window(const vfp_volume_t *vol, const char *text, vf_window_t *window, char *err, size_t errlen)
@@ -198,7 +209,7 @@ static vfp_status_t load(vfp_volume_t *vol, const char *spec, const vfp_load_opt
         return vfpi_load_phantom(vol, spec, err, errlen);
     }
     struct stat st;
-    if (stat(spec, &st) != 0)
+    if (vfpi_stat(spec, &st) != 0)
         return vfpi_fail(err, errlen, spec, 0, "cannot open: %s", strerror(errno));
     if (S_ISDIR(st.st_mode))
         return vfpi_fail(err, errlen, spec, 0, "is a directory (expected a volume file)");
@@ -293,7 +304,12 @@ static void raw_range(vfp_volume_t *vol)
     vol->raw_max = hi;
 }
 
-/* The 0.5 and 99.5 percentiles by a histogram of all 65536 raw values; widened so that lo < hi always. */
+/* 16-bit data's default window, by a histogram of all 65536 raw values (docs/defaults.md has the measurements):
+ * lo is the 0.5 percentile; hi is the 99.99 percentile, but at most twice as far from lo as the 99.5 percentile.
+ * The 99.5 percentile alone clipped sparse bright structures (a stent, a wire, contrast: well under 0.5% of the
+ * voxels) to the top of the window together with the brightest soft tissue, so they could not be told apart;
+ * the 99.99 percentile keeps anything above a hundredth of a percent of the voxels, and the cap keeps the bulk
+ * of the data (up to the 99.5 percentile) spread over at least half the window. Widened so that lo < hi. */
 static vf_window_t percentile_window(const vfp_volume_t *vol)
 {
     vf_window_t w = {vol->raw_min, vol->raw_max};
@@ -303,24 +319,25 @@ static vf_window_t percentile_window(const vfp_volume_t *vol)
     if (hist) {
         for (size_t i = 0; i < count; i++)
             hist[raw_at(vol, i) - base]++;
-        /* Ranks into the sorted values: lo rounds down and hi rounds up, so the window never shrinks to less
-         * than the data between the two percentiles. */
-        uint64_t lo_rank = (count - 1) * WINDOW_LO_PERMILLE / 1000;
-        uint64_t hi_rank = ((count - 1) * WINDOW_HI_PERMILLE + 999) / 1000;
+        /* Ranks into the sorted values: lo rounds down and the upper ones round up, so the window never shrinks
+         * to less than the data between the percentiles. */
+        const uint64_t rank[3] = {(count - 1) * WINDOW_LO_PERMYRIAD / 10000,
+                                  ((count - 1) * WINDOW_BULK_PERMYRIAD + 9999) / 10000,
+                                  ((count - 1) * WINDOW_TAIL_PERMYRIAD + 9999) / 10000};
+        int32_t at[3] = {w.lo, w.hi, w.hi};
         uint64_t seen = 0;
-        int have_lo = 0;
-        for (int32_t v = 0; v < 65536; v++) {
+        int found = 0;
+        for (int32_t v = 0; v < 65536 && found < 3; v++) {
             seen += hist[v];
-            if (!have_lo && seen > lo_rank) {
-                w.lo = v + base;
-                have_lo = 1;
-            }
-            if (seen > hi_rank) {
-                w.hi = v + base;
-                break;
-            }
+            while (found < 3 && seen > rank[found])
+                at[found++] = v + base;
         }
         free(hist);
+        int64_t cap = (int64_t)at[0] + 2 * ((int64_t)at[1] - at[0]);
+        w.lo = at[0];
+        w.hi = at[2] < cap ? at[2] : (int32_t)cap;
+        if (w.hi < at[1])
+            w.hi = at[1];
     }
     /* Mostly constant data (a small object in empty space) puts both percentiles on one value: widen to the
      * whole range, and to one raw step for constant data. */

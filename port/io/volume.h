@@ -52,9 +52,13 @@ void vfp_volume_free(vfp_volume_t *vol);
  * Returns VFP_OK, or VFP_ERR with err (dst then holds nothing to free). */
 vfp_status_t vfp_volume_downsampled(vfp_volume_t *dst, const vfp_volume_t *src, int factor, char *err, size_t errlen);
 
-/* The default window: the full range 0..255 for 8-bit data, otherwise the 0.5 and 99.5 percentiles of the raw
- * values (never lo == hi). */
+/* The default window: the full range 0..255 for 8-bit data; otherwise from the 0.5 percentile of the raw values
+ * to their 99.99 percentile, but at most twice as far as the 99.5 percentile (docs/defaults.md; never lo == hi). */
 vf_window_t vfp_default_window(const vfp_volume_t *vol);
+
+/* A raw-value window in data units (after slope/intercept), as every summary prints it and --window takes it
+ * back: one unit everywhere, HU for calibrated CT. */
+void vfp_window_data(const vfp_volume_t *vol, vf_window_t window, double *lo, double *hi);
 
 /* Parse "LO,HI" in data units (after slope/intercept) into a raw-value window. Returns VFP_OK, or VFP_ERR with err. */
 vfp_status_t vfp_parse_window(const vfp_volume_t *vol, const char *text, vf_window_t *window, char *err, size_t errlen);

@@ -10,6 +10,8 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
+#include <sys/stat.h>
 
 #include "volume.h"
 
@@ -30,6 +32,18 @@ typedef struct vfpi_source {
     int64_t byte_skip; /* -1: the data is the last bytes of the (uncompressed) file, NRRD's "byte skip: -1" */
     int gzip;          /* the data is gzip (or zlib) compressed; concatenated gzip members are one stream */
 } vfpi_source_t;
+
+/* A volume given as a pipe or FIFO (volfix-sim render <(zcat x.nhdr), /dev/stdin) gives its bytes once, and the
+ * readers open their file more than once (recognising it, a header, then attached data): vfpi_spool_begin copies
+ * such a stream, once and front to back, into an unnamed temporary file (at most VFPI_SPOOL_CAP bytes, docs/usage.md
+ * "Input sizes"), and until vfpi_spool_end, vfpi_fopen and vfpi_stat give the copy for that path: messages keep
+ * naming the path, and a detached data file stays beside it. A regular file or a device is left alone. A FIFO with
+ * no writer waits, as cat does, until a signal ends the program. */
+#define VFPI_SPOOL_CAP (1024ull << 20)
+vfp_status_t vfpi_spool_begin(const char *path, char *err, size_t errlen);
+void vfpi_spool_end(void);
+FILE *vfpi_fopen(const char *path);
+int vfpi_stat(const char *path, struct stat *st);
 
 /* Formats "name:line: message" (line 0: "name: message") into err; returns VFP_ERR, so `return vfpi_fail(...)`. */
 vfp_status_t vfpi_fail(char *err, size_t errlen, const char *name, unsigned line, const char *fmt, ...)

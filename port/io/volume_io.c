@@ -4,6 +4,7 @@
  *********************/
 #include "volume_internal.h"
 #include "printable.h"
+#include "render/memory.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -14,6 +15,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <zlib.h>
 
 /*********************
@@ -38,6 +40,14 @@ typedef struct stream {
     unsigned char *in;
 } stream_t;
 
+/* What a volume's voxels may take: checked with vfp_memory_check before they are allocated, together with what the
+ * renderer will need beside them, so that a volume too large for the machine is refused with its size named. */
+typedef struct budget {
+    const char *name;      /* the volume, as the user named it */
+    const uint32_t *dims;
+    uint64_t renderer;     /* bytes the renderer will take beside the voxels (default parameters) */
+} budget_t;
+
 /**********************
  *  STATIC PROTOTYPES
  **********************/
@@ -49,10 +59,11 @@ static vfp_status_t stream_refill(stream_t *s, const vfpi_source_t *src, char *e
 static vfp_status_t stream_skip(stream_t *s, const vfpi_source_t *src, uint64_t n, uint64_t *skipped, char *err,
                                 size_t errlen);
 static vfp_status_t skip_lines(FILE *file, const vfpi_source_t *src, char *err, size_t errlen);
-static vfp_status_t read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, size_t bytes, void **out,
-                               char *err, size_t errlen);
-static vfp_status_t read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, void **out, char *err,
-                              size_t errlen);
+static vfp_status_t read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, size_t bytes,
+                               const budget_t *budget, void **out, char *err, size_t errlen);
+static vfp_status_t read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, const budget_t *budget, void **out,
+                              char *err, size_t errlen);
+static uint64_t renderer_bytes(const uint32_t dims[3], vf_voxel_t type);
 static vfp_status_t src_fail(char *err, size_t errlen, const vfpi_source_t *src, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 
@@ -73,6 +84,81 @@ vfp_status_t vfpi_fail(char *err, size_t errlen, const char *name, unsigned line
     }
     vfp_printable(err); /* a file name or a quoted header value could carry a newline or binary junk */
     return VFP_ERR;
+}
+
+/* The stream copied by vfpi_spool_begin, and the path it came from (one at a time: volumes load one by one). */
+static FILE *spool_file;
+static char *spool_path;
+
+vfp_status_t vfpi_spool_begin(const char *path, char *err, size_t errlen)
+{
+    struct stat st;
+    if (stat(path, &st) != 0 || !(S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode)))
+        return VFP_OK; /* a regular file, a device or a missing path: the readers say what it is */
+    FILE *in = fopen(path, "rb");
+    if (!in)
+        return vfpi_fail(err, errlen, path, 0, "cannot open: %s", strerror(errno));
+    FILE *copy = tmpfile();
+    char *name = strdup(path);
+    unsigned char *buf = malloc(IN_BYTES);
+    vfp_status_t rc = VFP_OK;
+    if (!copy || !name || !buf)
+        rc = vfpi_fail(err, errlen, path, 0, "cannot make a temporary copy of the stream: %s", strerror(errno));
+    uint64_t total = 0;
+    while (rc == VFP_OK) {
+        size_t got = fread(buf, 1, IN_BYTES, in);
+        if (got == 0) {
+            if (ferror(in))
+                rc = vfpi_fail(err, errlen, path, 0, "cannot read: %s", strerror(errno));
+            break;
+        }
+        total += got;
+        if (total > VFPI_SPOOL_CAP)
+            rc = vfpi_fail(err, errlen, path, 0, "a stream longer than %llu MiB, the cap on a volume read from a "
+                           "pipe (give it as a regular file)", VFPI_SPOOL_CAP >> 20);
+        else if (fwrite(buf, 1, got, copy) != got)
+            rc = vfpi_fail(err, errlen, path, 0, "cannot copy the stream to a temporary file: %s", strerror(errno));
+    }
+    fclose(in);
+    free(buf);
+    if (rc == VFP_OK && fflush(copy) != 0)
+        rc = vfpi_fail(err, errlen, path, 0, "cannot copy the stream to a temporary file: %s", strerror(errno));
+    if (rc) {
+        if (copy)
+            fclose(copy);
+        free(name);
+        return VFP_ERR;
+    }
+    vfpi_spool_end();
+    spool_file = copy;
+    spool_path = name;
+    return VFP_OK;
+}
+
+void vfpi_spool_end(void)
+{
+    if (spool_file)
+        fclose(spool_file);
+    free(spool_path);
+    spool_file = NULL;
+    spool_path = NULL;
+}
+
+FILE *vfpi_fopen(const char *path)
+{
+    if (!spool_file || strcmp(path, spool_path) != 0)
+        return fopen(path, "rb");
+    /* a file of its own (its own offset) onto the copy, which stays open until vfpi_spool_end */
+    char proc[64];
+    snprintf(proc, sizeof proc, "/proc/self/fd/%d", fileno(spool_file));
+    return fopen(proc, "rb");
+}
+
+int vfpi_stat(const char *path, struct stat *st)
+{
+    if (spool_file && strcmp(path, spool_path) == 0)
+        return fstat(fileno(spool_file), st);
+    return stat(path, st);
 }
 
 vfp_status_t vfpi_read_head(const char *path, int gzip, unsigned char *buf, size_t cap, size_t *got, char *err,
@@ -100,6 +186,7 @@ vfp_status_t vfpi_read_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxe
     stream_t s;
     if (stream_open(&s, src, err, errlen))
         return VFP_ERR;
+    budget_t budget = {vol->name[0] ? vol->name : src->path, dims, renderer_bytes(dims, type)};
     void *data = NULL;
     vfp_status_t rc;
     if (src->offset && fseeko(s.file, (off_t)src->offset, SEEK_SET) != 0)
@@ -111,13 +198,13 @@ vfp_status_t vfpi_read_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_voxe
         if (src->byte_skip < 0)
             rc = src_fail(err, errlen, src, "byte skip -1 works only for uncompressed data");
         else
-            rc = read_gzip(&s, src, (size_t)n, &data, err, errlen);
+            rc = read_gzip(&s, src, (size_t)n, &budget, &data, err, errlen);
     } else {
         struct stat st;
         if (fstat(fileno(s.file), &st) != 0 || !S_ISREG(st.st_mode))
             rc = src_fail(err, errlen, src, "not a regular file (uncompressed data is read from regular files)");
         else
-            rc = read_plain(s.file, src, (uint64_t)st.st_size, (size_t)n, &data, err, errlen);
+            rc = read_plain(s.file, src, (uint64_t)st.st_size, (size_t)n, &budget, &data, err, errlen);
     }
     stream_close(&s);
     if (rc)
@@ -166,6 +253,10 @@ vfp_status_t vfpi_alloc_voxels(vfp_volume_t *vol, const uint32_t dims[3], vf_vox
     if (n > (uint64_t)SIZE_MAX)
         return vfpi_fail(err, errlen, name, 0, "volume of %llu bytes is too large for this machine",
                          (unsigned long long)n);
+    if (vfp_memory_check(name, dims, n + renderer_bytes(dims, type), err, errlen)) {
+        vfp_printable(err);
+        return VFP_ERR;
+    }
     vol->data = malloc((size_t)n);
     if (!vol->data)
         return vfpi_fail(err, errlen, name, 0, "out of memory for %llu bytes of voxels", (unsigned long long)n);
@@ -236,7 +327,7 @@ static vfp_status_t stream_open(stream_t *s, const vfpi_source_t *src, char *err
 {
     memset(s, 0, sizeof *s);
     s->gzip = src->gzip;
-    s->file = fopen(src->path, "rb");
+    s->file = vfpi_fopen(src->path);
     if (!s->file) {
         const char *why = strerror(errno);
         if (src->owner)
@@ -363,10 +454,27 @@ static vfp_status_t skip_lines(FILE *file, const vfpi_source_t *src, char *err, 
     return VFP_OK;
 }
 
-/* Checks that the file holds exactly `bytes` bytes of data (after the skips) before it allocates them: a header
- * that claims a huge volume costs nothing when the data is not there. */
-static vfp_status_t read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, size_t bytes, void **out,
-                               char *err, size_t errlen)
+/* The renderer's bytes beside a volume's voxels, at the default parameters (the programs check again with their
+ * own once the options are known). */
+static uint64_t renderer_bytes(const uint32_t dims[3], vf_voxel_t type)
+{
+    vf_params_t params;
+    vf_params_default(&params);
+    return vfp_memory_renderer(&params, dims, type);
+}
+
+static vfp_status_t over_budget(const budget_t *b, uint64_t voxel_bytes, char *err, size_t errlen)
+{
+    if (vfp_memory_check(b->name, b->dims, voxel_bytes + b->renderer, err, errlen) == VFP_OK)
+        return VFP_OK;
+    vfp_printable(err);
+    return VFP_ERR;
+}
+
+/* Checks that the file holds exactly `bytes` bytes of data (after the skips), and that the machine has room for
+ * them, before it allocates them: a header that claims a huge volume costs nothing when the data is not there. */
+static vfp_status_t read_plain(FILE *file, const vfpi_source_t *src, uint64_t file_bytes, size_t bytes,
+                               const budget_t *budget, void **out, char *err, size_t errlen)
 {
     off_t here = ftello(file);
     if (here < 0)
@@ -394,6 +502,8 @@ static vfp_status_t read_plain(FILE *file, const vfpi_source_t *src, uint64_t fi
     }
     if (fseeko(file, (off_t)start, SEEK_SET) != 0)
         return src_fail(err, errlen, src, "cannot seek to byte %llu: %s", (unsigned long long)start, strerror(errno));
+    if (over_budget(budget, bytes, err, errlen))
+        return VFP_ERR;
     void *dst = malloc(bytes);
     if (!dst)
         return src_fail(err, errlen, src, "out of memory for %zu bytes of voxels", bytes);
@@ -410,7 +520,8 @@ static vfp_status_t read_plain(FILE *file, const vfpi_source_t *src, uint64_t fi
 
 /* The decompressed size is known only by decompressing, so the buffer grows with the data (doubling, up to
  * `bytes`): a small file that claims a huge volume is found short after allocating about what it holds. */
-static vfp_status_t read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, void **out, char *err, size_t errlen)
+static vfp_status_t read_gzip(stream_t *s, const vfpi_source_t *src, size_t bytes, const budget_t *budget, void **out,
+                              char *err, size_t errlen)
 {
     uint64_t skipped;
     if (stream_skip(s, src, (uint64_t)src->byte_skip, &skipped, err, errlen))
@@ -433,6 +544,9 @@ static vfp_status_t read_gzip(stream_t *s, const vfpi_source_t *src, size_t byte
         if (got < cap || cap == bytes)
             break; /* the end of the data, or all of it */
         cap = cap > bytes / 2 ? bytes : cap * 2;
+        /* the data has kept coming: before the buffer grows past what the machine has, the whole need is told */
+        if (cap + budget->renderer > vfp_memory_available() && (rc = over_budget(budget, bytes, err, errlen)) != VFP_OK)
+            break;
         unsigned char *grown = realloc(dst, cap);
         if (!grown)
             free(dst);
@@ -441,13 +555,14 @@ static vfp_status_t read_gzip(stream_t *s, const vfpi_source_t *src, size_t byte
     if (rc == VFP_OK && got < bytes)
         rc = src_fail(err, errlen, src, "truncated: expected %zu bytes of voxel data after decompression, found %zu",
                       bytes, got);
-    /* Count the surplus so the message can say how much there is (a wrong header is the usual cause). */
+    /* One byte more than expected is enough to refuse the file: the rest of the surplus is never decompressed
+     * (a small file can inflate to gigabytes). */
     uint64_t extra = 0;
     if (rc == VFP_OK)
-        rc = stream_skip(s, src, UINT64_MAX, &extra, err, errlen);
+        rc = stream_skip(s, src, 1, &extra, err, errlen);
     if (rc == VFP_OK && extra)
-        rc = src_fail(err, errlen, src, "expected %zu bytes of voxel data after decompression, found %llu%s", bytes,
-                      (unsigned long long)(bytes + extra), src->note ? "" : " (more than the sizes and type say)");
+        rc = src_fail(err, errlen, src, "expected %zu bytes of voxel data after decompression, found at least %zu%s",
+                      bytes, bytes + 1, src->note ? "" : " (more than the sizes and type say)");
     if (rc) {
         free(dst);
         return rc;

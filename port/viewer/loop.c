@@ -50,12 +50,15 @@ typedef struct loop {
     double worst_latency;
 } loop_t;
 
-static int signal_pipe[2] = {-1, -1}; /* the handler's way into poll: the one piece of process-wide state */
+/* The one piece of process-wide state: what the SIGINT and SIGTERM handler leaves, the signal's number and a
+ * byte in a pipe that wakes the loop's poll. */
+static int signal_pipe[2] = {-1, -1};
+static volatile sig_atomic_t signal_caught;
 
 static void on_signal(int sig)
 {
-    (void)sig;
     int saved = errno;
+    signal_caught = sig;
     char byte = 1;
     if (write(signal_pipe[1], &byte, 1) < 0) {
         /* a full pipe already holds a wake-up */
@@ -110,12 +113,14 @@ static void memory_kb(long *rss, long *peak)
         *peak = ru.ru_maxrss; /* KB on Linux */
 }
 
-/* One line of the log: the frame, and the volfix-sim render options that reproduce its pixels. */
-static void log_frame(loop_t *L, int full, double ms, double present_ms, double latency_ms)
+/* One line of the log: the frame, and the volfix-sim render options that reproduce its pixels. Returns VFP_OK,
+ * or VFP_ERR after printing an error when the line could not be written (a full disk ends the run: a log with
+ * holes would not say what was shown). */
+static vfp_status_t log_frame(loop_t *L, int full, double ms, double present_ms, double latency_ms)
 {
     viewer_t *v = L->v;
     if (!v->log)
-        return;
+        return VFP_OK;
     const viewer_scene_t *s = &v->scene;
     const vfp_controls_t *c = &v->controls;
     double slope = s->full.slope != 0 ? s->full.slope : 1, inter = s->full.inter;
@@ -142,7 +147,11 @@ static void log_frame(loop_t *L, int full, double ms, double present_ms, double 
     if (!full && s->preview_factor > 1)
         fprintf(v->log, " --downsample %d", s->preview_factor);
     fputc('\n', v->log);
-    fflush(v->log);
+    if (fflush(v->log) != 0 || ferror(v->log)) {
+        fprintf(stderr, "volfix: %s: cannot write the log: %s\n", v->log_path, strerror(errno ? errno : EIO));
+        return VFP_ERR;
+    }
+    return VFP_OK;
 }
 
 static void record_latencies(loop_t *L, uint64_t now, double *worst)
@@ -226,8 +235,7 @@ static vfp_status_t present(loop_t *L, int full, double ms)
     full ? L->fulls++ : L->previews++;
     L->shown_gen = L->gen;
     L->shown_full = full;
-    log_frame(L, full, ms, (double)(now - t0) / 1e6, worst);
-    return VFP_OK;
+    return log_frame(L, full, ms, (double)(now - t0) / 1e6, worst);
 }
 
 /* Open the display and size the pictures to it. Returns VFP_OK, or VFP_ERR with err. */
@@ -239,6 +247,14 @@ static vfp_status_t open_display(loop_t *L, char *err, size_t errlen)
     if (v->display_ops->open(&L->display, &v->board, err, errlen))
         return VFP_ERR;
     L->display_open = 1;
+    if (L->display.width > VF_MAX_IMAGE || L->display.height > VF_MAX_IMAGE) {
+        /* a display's own mode (drm, fbdev, gud) larger than the renderer draws: said now, not at the first frame */
+        snprintf(err, errlen, "%s: display %s has a %ux%u mode; the renderer draws at most %dx%d", v->board.path,
+                 v->board.display, L->display.width, L->display.height, VF_MAX_IMAGE, VF_MAX_IMAGE);
+        v->display_ops->close(&L->display);
+        L->display_open = 0;
+        return VFP_ERR;
+    }
     if (L->frame.pixels && L->frame.width == L->display.width && L->frame.height == L->display.height &&
         L->frame.format == L->display.format)
         return VFP_OK;
@@ -353,13 +369,13 @@ static void summary(loop_t *L)
     printf("\n");
 }
 
-static vfp_status_t setup(loop_t *L, char *err, size_t errlen)
+vfp_status_t viewer_signals_catch(char *err, size_t errlen)
 {
-    viewer_t *v = L->v;
     if (pipe(signal_pipe) || set_nonblocking(signal_pipe[0]) || set_nonblocking(signal_pipe[1])) {
         snprintf(err, errlen, "cannot make a pipe for signals: %s", strerror(errno));
         return VFP_ERR;
     }
+    /* no SA_RESTART: a read that waits (a FIFO with no writer yet) returns EINTR, and the caller stops */
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
@@ -367,7 +383,28 @@ static vfp_status_t setup(loop_t *L, char *err, size_t errlen)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
     signal(SIGPIPE, SIG_IGN); /* a display over a socket or pipe that went away is an error, not a death */
+    return VFP_OK;
+}
 
+int viewer_signal_caught(void)
+{
+    return signal_caught;
+}
+
+void viewer_signals_release(void)
+{
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    for (int i = 0; i < 2; i++)
+        if (signal_pipe[i] >= 0) {
+            close(signal_pipe[i]);
+            signal_pipe[i] = -1;
+        }
+}
+
+static vfp_status_t setup(loop_t *L, char *err, size_t errlen)
+{
+    viewer_t *v = L->v;
     L->input.ops = v->input_ops;
     if (v->input_ops->open(&L->input, &v->board, v->script, err, errlen))
         return VFP_ERR;
@@ -395,13 +432,6 @@ static void teardown(loop_t *L)
         v->input_ops->close(&L->input);
     vfp_image_free(&L->clean);
     vfp_image_free(&L->frame);
-    signal(SIGINT, SIG_DFL);
-    signal(SIGTERM, SIG_DFL);
-    for (int i = 0; i < 2; i++)
-        if (signal_pipe[i] >= 0) {
-            close(signal_pipe[i]);
-            signal_pipe[i] = -1;
-        }
 }
 
 /* The earliest of the deadlines, as a poll timeout in ms (-1: none). */
@@ -441,7 +471,7 @@ vfp_status_t viewer_loop(viewer_t *v)
     fflush(stdout);
     atomic_store(&L.worker.latest, L.gen);
     uint64_t idle_ns = (uint64_t)v->board.idle_ms * 1000000u;
-    int readable = 1, stop = 0;
+    int readable = 1, stop = signal_caught != 0;
     while (!stop && !status) {
         uint64_t now = now_ns();
         /* Input first, all of it: one frame answers every event that arrived meanwhile. */
@@ -457,7 +487,7 @@ vfp_status_t viewer_loop(viewer_t *v)
                     break;
                 }
                 apply_events(&L, ev, n);
-            } while (n == MAX_EVENTS);
+            } while (n == MAX_EVENTS && !signal_caught); /* a device that floods does not hold off a signal */
         }
         if (status)
             break;
@@ -492,6 +522,15 @@ vfp_status_t viewer_loop(viewer_t *v)
         if (L.quitting && !(full_wanted(&L)))
             break;
         if (v->max_frames && L.frames >= v->max_frames)
+            break;
+        /* With --frames, an input that has nothing more to give (a script played to its end without "quit": no
+         * fd to poll, no deadline) ends the run once its last picture is on the display at full quality, rather
+         * than waiting for frames that will never come. */
+        if (v->max_frames && v->input_ops->fd(&L.input) < 0 && !v->input_ops->deadline_ns(&L.input) &&
+            L.display_open && !L.need_fast && !L.need_redraw && !full_wanted(&L) &&
+            (!L.have_worker || worker_free(&L)))
+            break;
+        if (signal_caught)
             break;
 
         struct pollfd fds[3];

@@ -1,6 +1,8 @@
 /*
  * main.c: volfix, the knob-driven viewer: options, set-up and the closing summary (the loop is loop.c).
  */
+#include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,6 +11,7 @@
 #include <malloc.h>
 #endif
 
+#include "io/numbers.h"
 #include "viewer.h"
 
 /* Where a board named without a slash (--board rpi4-spi-st7789) is looked for: the installed boards, set by the
@@ -27,23 +30,27 @@ static const char usage[] =
     "  --preset NAME        transfer function to start with: ramp (default), sharp, ct-bone, ct-skin-bone or\n"
     "                       mr-brain; the preset button cycles through them all\n"
     "  --tf FILE            start with a transfer-function file (the preset button cycles it and the presets)\n"
-    "  --window LO,HI       data values the transfer function's 0..1 spans (default: from the data)\n"
+    "  --window LO,HI       data values the transfer function's 0..1 spans, two different finite numbers\n"
+    "                       (default: from the data, docs/defaults.md)\n"
     "  --mode MODE          point, preint1 (default), preclass or preint2; the mode button cycles them\n"
-    "  --view AZ,EL[,ROLL]  first view in degrees (default 30,20); the reset button comes back to it\n"
-    "  --zoom Z             first zoom, 1 fitting the volume (default 1)\n"
+    "  --view AZ,EL[,ROLL]  first view in degrees, each -360..360 (default 30,20); the reset button comes back\n"
+    "                       to it\n"
+    "  --zoom Z             first zoom, 1 fitting the volume; 0.25..8 (default 1)\n"
     "  --script FILE        knob turns and presses from a file instead of the board's inputs\n"
     "                       (lines 'MS turn KNOB STEPS', 'MS press BUTTON', 'MS release BUTTON', 'MS quit')\n"
     "  --device PATH        the display device instead of the board's (png: the frames' directory)\n"
-    "  --size WxH           picture size for the sdl and png displays instead of the board's\n"
+    "  --size WxH           picture size for the sdl and png displays instead of the board's, each 16..4096\n"
     "  --preview N          while a knob turns, render a copy N times smaller a side (default 2 for volumes\n"
     "                       of 64^3 voxels or more, else 1: off)\n"
     "  --idle-ms MS         full quality once the knobs rest this long (default: the board's, else 300)\n"
-    "  --threads N          rendering threads (default: the board's, else the processors online)\n"
+    "  --threads N          rendering threads, 1..16 (default: the board's, else the processors online)\n"
     "  --overlay            show the frame-time overlay from the start (the overlay button toggles it)\n"
     "  --log FILE           a line per frame shown: quality, time, input latency, memory, and the volfix-sim\n"
     "                       render options that give the same pixels\n"
-    "  --frames N           leave after N frames (long runs and tests)\n"
-    "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]   for raw voxel files\n"
+    "  --frames N           leave after N frames, 1..1000000000 (long runs and tests); a script that ends\n"
+    "                       without 'quit' then ends the run once its last picture is shown\n"
+    "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]   for raw voxel files:\n"
+    "                       sizes 2..4096, spacings above 0 and at most 32767\n"
     "  --version            print the version and leave\n"
     "Lighting (docs/algorithm.md section 7), for every transfer function the preset button cycles to; each\n"
     "otherwise lit as it says itself:\n"
@@ -58,12 +65,19 @@ static vfp_status_t bad(const char *option, const char *value, const char *expec
 
 static vfp_status_t parse_int(const char *text, int lo, int hi, int *out)
 {
-    char *end;
-    long n = text ? strtol(text, &end, 10) : 0;
-    if (!text || end == text || *end || n < lo || n > hi)
+    long long n;
+    if (!vfp_parse_integer(text, lo, hi, &n))
         return VFP_ERR;
     *out = (int)n;
     return VFP_OK;
+}
+
+/* The options that take no value: any other option followed by '' is given an empty value, an error rather than
+ * a way back to the default ("--device ''" would otherwise write frames into a folder nobody named). */
+static int is_flag(const char *a)
+{
+    return !strcmp(a, "--help") || !strcmp(a, "-h") || !strcmp(a, "--version") || !strcmp(a, "--overlay") ||
+           !strcmp(a, "--big-endian");
 }
 
 typedef struct options {
@@ -90,6 +104,14 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         int takes = 1, took;
+        if (!*a) {
+            fprintf(stderr, "volfix: '': an empty argument (expected an option or a volume)\n");
+            return VFP_ERR;
+        }
+        if (vfp_is_empty(v) && a[0] == '-' && !is_flag(a)) {
+            fprintf(stderr, "volfix: %s '': an empty value (expected a value; see volfix --help)\n", a);
+            return VFP_ERR;
+        }
         if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
             fputs(usage, stdout);
             return VFP_HELP_SHOWN;
@@ -99,10 +121,18 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
         } else if (!strcmp(a, "--board") && v) {
             o->board = v;
         } else if (!strcmp(a, "--preset") && v) {
+            int k = 0;
+            while (vfp_tf_preset_names[k] && strcmp(v, vfp_tf_preset_names[k]))
+                k++;
+            if (!vfp_tf_preset_names[k])
+                return bad(a, v, "ramp, sharp, ct-bone, ct-skin-bone or mr-brain");
             o->preset = v;
         } else if (!strcmp(a, "--tf") && v) {
             o->tf = v;
         } else if (!strcmp(a, "--window") && v) {
+            double w[2];
+            if (vfp_parse_list(v, w, 2, 2) != 2 || w[0] == w[1])
+                return bad(a, v, "LO,HI: two different finite numbers in data units, for example 0,1000");
             o->window = v;
         } else if (!strcmp(a, "--script") && v) {
             o->script = v;
@@ -118,21 +148,16 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
                 return bad(a, v, "point, preint1, preclass or preint2");
             o->mode = (vf_mode_t)m;
         } else if (!strcmp(a, "--view")) {
-            int n = v ? sscanf(v, "%lf,%lf,%lf", &o->view[0], &o->view[1], &o->view[2]) : 0;
-            if (n < 2)
-                return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees");
+            double d[3] = {0, 0, 0};
+            if (!vfp_parse_list(v, d, 2, 3) || !(fabs(d[0]) <= 360 && fabs(d[1]) <= 360 && fabs(d[2]) <= 360))
+                return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees, each -360..360");
+            memcpy(o->view, d, sizeof d);
         } else if (!strcmp(a, "--zoom")) {
-            char *end;
-            o->zoom = v ? strtod(v, &end) : 0;
-            if (!v || *end || !(o->zoom >= VFP_ZOOM_MIN && o->zoom <= VFP_ZOOM_MAX))
+            if (!vfp_parse_number(v, VFP_ZOOM_MIN, VFP_ZOOM_MAX, &o->zoom))
                 return bad(a, v, "a zoom from 0.25 to 8");
         } else if (!strcmp(a, "--size")) {
-            unsigned w, h;
-            char extra;
-            if (!v || sscanf(v, "%ux%u%c", &w, &h, &extra) != 2 || w < 16 || h < 16 || w > 4096 || h > 4096)
-                return bad(a, v, "WxH, each 16 to 4096");
-            o->width = w;
-            o->height = h;
+            if (!vfp_parse_size(v, 16, 4096, &o->width, &o->height))
+                return bad(a, v, "WxH, each an integer 16 to 4096");
         } else if (!strcmp(a, "--preview")) {
             if (parse_int(v, 1, 8, &o->preview))
                 return bad(a, v, "an integer from 1 (off) to 8");
@@ -144,7 +169,7 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
                 return bad(a, v, "an integer from 1 to 16");
         } else if (!strcmp(a, "--frames")) {
             if (parse_int(v, 1, 1000000000, &o->frames))
-                return bad(a, v, "a number of frames from 1");
+                return bad(a, v, "a number of frames, an integer from 1 to 1000000000");
         } else if (!strcmp(a, "--overlay")) {
             o->overlay = 1;
             takes = 0;
@@ -164,13 +189,17 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
             o->load.big_endian = 1;
             takes = 0;
         } else if (!strcmp(a, "--spacing")) {
-            double *s = o->load.spacing;
-            if (!v || sscanf(v, "%lf,%lf,%lf", &s[0], &s[1], &s[2]) != 3 || !(s[0] > 0 && s[1] > 0 && s[2] > 0))
-                return bad(a, v, "X,Y,Z, three positive numbers");
+            double *sp = o->load.spacing;
+            if (vfp_parse_list(v, sp, 3, 3) != 3 || !(sp[0] > 0 && sp[1] > 0 && sp[2] > 0) ||
+                !(sp[0] <= 32767 && sp[1] <= 32767 && sp[2] <= 32767))
+                return bad(a, v, "X,Y,Z, three numbers above 0 and at most 32767");
             o->load.have_spacing = 1;
         } else if ((took = vfp_lighting_option(&o->lighting, "volfix", a, v)) != 0) {
             if (took < 0)
                 return VFP_ERR;
+        } else if (a[0] == '-' && !v && !is_flag(a)) {
+            fprintf(stderr, "volfix: %s: unknown option or missing value (see volfix --help)\n", a);
+            return VFP_ERR;
         } else if (a[0] != '-' && !o->volume) {
             o->volume = a;
             takes = 0;
@@ -238,6 +267,12 @@ static vfp_status_t load_tfs(viewer_scene_t *s, const options_t *o, int *first, 
 
 static vfp_status_t setup(viewer_t *v, const options_t *o, char *err, size_t errlen)
 {
+    /* the log first: a path that cannot be written is found before any work */
+    if (o->log && !(v->log = fopen(o->log, "w"))) {
+        snprintf(err, errlen, "%s: cannot write the log: %s", o->log, strerror(errno));
+        return VFP_ERR;
+    }
+    v->log_path = o->log;
     if (vfp_board_load(&v->board, o->board, err, errlen))
         return VFP_ERR;
     vfp_board_t *b = &v->board;
@@ -300,10 +335,6 @@ static vfp_status_t setup(viewer_t *v, const options_t *o, char *err, size_t err
     c->shade_now = lighting.shade;
     c->overlay = b->overlay;
     v->home = *c;
-    if (o->log && !(v->log = fopen(o->log, "w"))) {
-        snprintf(err, errlen, "%s: cannot write the log", o->log);
-        return VFP_ERR;
-    }
     v->volume_arg = o->volume;
     v->max_frames = o->frames > 0 ? (unsigned)o->frames : 0;
     return VFP_OK;
@@ -326,15 +357,24 @@ int main(int argc, char **argv)
     viewer_t v;
     memset(&v, 0, sizeof v);
     char err[VIEWER_ERR_LEN] = "";
-    status = setup(&v, &o, err, sizeof err);
+    /* from here on SIGINT and SIGTERM end every stage (a FIFO read waiting for its writer, the loop) cleanly,
+     * with status 130 or 143 as a shell reports a process the signal ended */
+    status = viewer_signals_catch(err, sizeof err);
+    if (status == VFP_OK)
+        status = setup(&v, &o, err, sizeof err);
     if (status) {
-        fprintf(stderr, "volfix: %s\n", err);
-    } else {
+        if (!viewer_signal_caught())
+            fprintf(stderr, "volfix: %s\n", err);
+    } else if (!viewer_signal_caught()) {
         status = viewer_loop(&v);
     }
-    if (v.log)
-        fclose(v.log);
+    if (v.log && fclose(v.log) != 0 && status == VFP_OK) {
+        fprintf(stderr, "volfix: %s: cannot write the log: %s\n", o.log, strerror(errno));
+        status = VFP_ERR;
+    }
     vfp_volume_free(&v.scene.full);
     vfp_volume_free(&v.scene.preview);
-    return vfp_exit_status(status);
+    int sig = viewer_signal_caught();
+    viewer_signals_release();
+    return sig ? 128 + sig : vfp_exit_status(status);
 }

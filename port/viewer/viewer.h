@@ -120,13 +120,24 @@ typedef struct viewer {
     const vfp_display_ops_t *display_ops;
     const vfp_input_ops_t *input_ops;
     FILE *log;               /* --log, or NULL */
+    const char *log_path;    /* its name, for messages */
     const char *volume_arg;  /* as given on the command line, for the log's volfix-sim lines */
     unsigned max_frames;     /* --frames N: leave after N frames (0: no limit) */
     int verbose;
 } viewer_t;
 
+/* SIGINT and SIGTERM, from the start of the program: the handler notes the signal and wakes the loop, and a read
+ * that waits is interrupted (EINTR). viewer_signals_catch returns VFP_OK, or VFP_ERR with err;
+ * viewer_signal_caught is the signal's number (0: none), for the exit status 128 + N; viewer_signals_release
+ * puts the default handlers back. */
+vfp_status_t viewer_signals_catch(char *err, size_t errlen);
+int viewer_signal_caught(void);
+void viewer_signals_release(void);
+
 /* Run until quit (a quit button or the script's "quit": the full-quality frame is shown first), SIGINT or
- * SIGTERM. Returns VFP_OK, or VFP_ERR after printing a one-line error. Prints the session's summary. */
+ * SIGTERM (viewer_signal_caught then says which), or with --frames N, N frames or the end of a script without
+ * "quit". Returns VFP_OK, or VFP_ERR after printing a one-line error. Prints the session's summary and gives the
+ * display back in every case. */
 vfp_status_t viewer_loop(viewer_t *v);
 
 #endif

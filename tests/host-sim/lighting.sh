@@ -65,7 +65,7 @@ scene="phantom:sphere:8 --size 16x16 --hash"
 check_errors() { # PROGRAM_NAME ARGS_BEFORE...: every bad lighting option after them
     who=$1
     shift
-    for bad in "--shade|flat|expected none or phong" "--shade||expected none or phong" \
+    for bad in "--shade|flat|expected none or phong" \
         "--light|30|expected AZ,EL in degrees" "--light|30,20,10|expected AZ,EL in degrees" \
         "--light|400,0|azimuth -360..360" "--light|0,95|elevation -90..90" "--light|nan,0|expected AZ,EL" \
         "--light|1e999,0|expected AZ,EL" "--light|30,|expected AZ,EL" "--light|,30|expected AZ,EL" \
@@ -87,6 +87,7 @@ check_errors() { # PROGRAM_NAME ARGS_BEFORE...: every bad lighting option after 
     done
     expect_error "$who --light three times" "at most 2 lights" "$@" --light 0,0 --light 10,0 --light 20,0
     expect_error "$who --light missing" "--light (missing): expected AZ,EL" "$@" --light
+    expect_error "$who --shade ''" "--shade '': an empty value" "$@" --shade ""
     expect_error "$who --shade none with --light" "--light goes with --shade phong" "$@" --shade none --light 10,0
     expect_error "$who --shade none with --material" "--material goes with --shade phong" "$@" --material 0,1,0,5 \
         --shade none

@@ -575,7 +575,7 @@ static void error_gzip(void)
     free(gz);
     gz = fx_gzip_bytes(data, sizeof data, &gz_n);
     p = fx_write("gzlong.nrrd", header, gz, gz_n);
-    fx_expect_error(p, NULL, p, "expected 60 bytes of voxel data after decompression, found 240");
+    fx_expect_error(p, NULL, p, "expected 60 bytes of voxel data after decompression, found at least 61");
     free(gz);
 
     p = attached("gzskip.nrrd", HEAD "type: uint8\ndimension: 3\nsizes: 3 4 5\nencoding: gzip\nbyte skip: -1\n",

@@ -157,22 +157,33 @@ else
     fail "overlay covers a small part of the frame" "over1_pct '$pct'"
 fi
 
-# 6. SIGTERM: the viewer leaves at once, cleanly, with its summary.
+# 6. SIGTERM and SIGINT: the viewer leaves at once, cleanly, with its summary, in the status a shell gives a
+# process the signal ended (143, 130). A script without quit keeps it running until then.
 printf '100 turn 0 1\n' >"$tmp/forever.script"
-"$viewer" --board "$board" phantom:sphere:32 --script "$tmp/forever.script" --device "$tmp/term" >"$tmp/term.out" 2>&1 &
-pid=$!
-i=0
-while [ $i -lt 50 ] && [ "$(find "$tmp/term" -name '*.png' 2>/dev/null | wc -l)" -lt 2 ]; do
-    sleep 0.1
-    i=$((i + 1))
+for sig in TERM:143 INT:130; do
+    "$viewer" --board "$board" phantom:sphere:32 --script "$tmp/forever.script" --device "$tmp/term${sig%:*}" \
+        >"$tmp/term.out" 2>&1 &
+    pid=$!
+    i=0
+    while [ $i -lt 50 ] && [ "$(find "$tmp/term${sig%:*}" -name '*.png' 2>/dev/null | wc -l)" -lt 2 ]; do
+        sleep 0.1
+        i=$((i + 1))
+    done
+    kill -"${sig%:*}" $pid
+    wait $pid
+    status=$?
+    if [ $status -eq "${sig#*:}" ] && grep -q '^volfix: [0-9]* frames' "$tmp/term.out"; then
+        ok "SIG${sig%:*} exits ${sig#*:} with the summary"
+    else
+        fail "SIG${sig%:*} exits ${sig#*:} with the summary" "status $status: $(cat "$tmp/term.out")"
+    fi
 done
-kill -TERM $pid
-wait $pid
-status=$?
-if [ $status -eq 0 ] && grep -q '^volfix: [0-9]* frames' "$tmp/term.out"; then
-    ok "SIGTERM exits 0 with the summary"
+# with --frames, the same script ends the run once its last picture is shown
+if timeout 20 "$viewer" --board "$board" phantom:sphere:32 --script "$tmp/forever.script" --device "$tmp/ends" \
+    --frames 100 >"$tmp/ends.out" 2>&1; then
+    ok "a script without quit ends with --frames"
 else
-    fail "SIGTERM exits 0 with the summary" "status $status: $(cat "$tmp/term.out")"
+    fail "a script without quit ends with --frames" "status $?: $(tail -n 1 "$tmp/ends.out")"
 fi
 
 # 7. Bad input: status 2 and one line that says what was wrong.
@@ -183,7 +194,7 @@ printf 'display = png\ninput = script\nknob.0.action = spin\n' >"$tmp/typo.board
 expect_error "board with a typo" "typo.board:3:" --board "$tmp/typo.board" phantom:sphere:8
 expect_error "missing script" "nope.script" --board "$board" phantom:sphere:8 --script "$tmp/nope.script" --device "$tmp/x"
 expect_error "missing volume" "nope.nhdr" --board "$board" "$tmp/nope.nhdr" --script "$tmp/idle.script" --device "$tmp/x"
-expect_error "unknown preset" "unknown preset 'bones'" --board "$board" phantom:sphere:8 --preset bones --script "$tmp/idle.script"
+expect_error "unknown preset" "--preset bones: expected ramp, sharp" --board "$board" phantom:sphere:8 --preset bones --script "$tmp/idle.script"
 expect_error "bad preview" "--preview 0: expected an integer from 1 (off) to 8" --board "$board" phantom:sphere:8 --preview 0
 expect_error "unknown option" "unknown option or extra argument '--colour'" --board "$board" phantom:sphere:8 --colour red
 touch "$tmp/file"
