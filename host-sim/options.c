@@ -10,7 +10,8 @@ const char sim_scene_help[] =
     "  --tf FILE            transfer function file (see README: 'scalar r g b a' per line)\n"
     "  --mode MODE          point (order 0), preint1 (order 1, pre-integrated; default) or preclass\n"
     "                       (order 0 with voxels classified before interpolation, as VolPack)\n"
-    "  --view AZ,EL[,ROLL]  view angles in degrees (default 30,20)\n"
+    "  --view AZ,EL[,ROLL]  view angles in degrees (default 30,20), or a named view in the patient frame:\n"
+    "                       anterior, posterior, left, right, superior or inferior (docs/formats.md)\n"
     "  --zoom Z             1 fits the volume's bounding sphere in the image (default 1)\n"
     "  --size WxH           output size in pixels (default 512x512)\n"
     "  --format F           rgb888 (default), rgb565 or xrgb8888\n"
@@ -37,8 +38,9 @@ const char sim_scene_help[] =
     VFP_LIGHTING_HELP
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]\n"
     "                       for raw voxel files (--spacing also overrides a file's own)\n"
-    "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N with NAME marschner-lobb,\n"
-    "shepp-logan, sphere or cube.\n";
+    "  --series UID         the DICOM series to load from a folder holding several (default: the largest)\n"
+    "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .mhd/.mha, DICOM (a folder of slices or a file), .den or raw file, or\n"
+    "phantom:NAME:N with NAME marschner-lobb, shepp-logan, sphere or cube (formats: docs/formats.md).\n";
 
 static vfp_status_t bad(const char *option, const char *value, const char *expected)
 {
@@ -154,8 +156,8 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
             o->params.rays = (uint32_t)n;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--view") == 0) {
             double d[3] = {0, 0, 0};
-            if (!v || parse_doubles(v, d, 2, 3) < 0)
-                return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees");
+            if (!v || (vfp_view_named(v, d) != VFP_OK && parse_doubles(v, d, 2, 3) < 0))
+                return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees, or " VFP_VIEW_NAMES);
             o->azimuth = d[0];
             o->elevation = d[1];
             o->roll = d[2];
@@ -203,6 +205,10 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
                 return VFP_ERR;
             }
             o->load.have_type = 1;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--series") == 0) {
+            if (!v || !v[0])
+                return bad(a, v, "a DICOM Series Instance UID");
+            o->load.series = v;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--big-endian") == 0) {
             o->load.big_endian = 1;
             takes = 0;

@@ -242,8 +242,9 @@ bool read_slices(const std::string &file, std::vector<Slice> &out)
     s.file = file;
     s.series = sf.ToString(gdcm::Tag(0x0020, 0x000e));
     s.description = sf.ToString(gdcm::Tag(0x0008, 0x103e));
-    while (!s.series.empty() && (s.series.back() == ' ' || s.series.back() == '\0'))
-        s.series.pop_back();
+    for (std::string *t : {&s.series, &s.description}) /* DICOM pads strings to even lengths */
+        while (!t->empty() && (t->back() == ' ' || t->back() == '\0'))
+            t->pop_back();
     gdcm::Attribute<0x0028, 0x0010> rows;
     gdcm::Attribute<0x0028, 0x0011> columns;
     gdcm::Attribute<0x0028, 0x0100> bits;
@@ -400,7 +401,7 @@ void load(vfp_volume_t *vol, const std::string &path, const vfp_load_opts_t *opt
                  "data)");
         if (slices[0].frames == 1) {
             size_t slash = path.rfind('/');
-            folder = slash == std::string::npos ? "." : path.substr(0, slash + 1);
+            folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
             of_file = slices[0].series;
             if (wanted.empty())
                 wanted = of_file;

@@ -29,7 +29,8 @@ static const char usage[] =
     "  --tf FILE            start with a transfer-function file (the preset button cycles it and the presets)\n"
     "  --window LO,HI       data values the transfer function's 0..1 spans (default: from the data)\n"
     "  --mode MODE          point, preint1 (default) or preclass; the mode button cycles them\n"
-    "  --view AZ,EL[,ROLL]  first view in degrees (default 30,20); the reset button comes back to it\n"
+    "  --view AZ,EL[,ROLL]  first view in degrees (default 30,20), or anterior, posterior, left, right,\n"
+    "                       superior or inferior (the patient frame); the reset button comes back to it\n"
     "  --zoom Z             first zoom, 1 fitting the volume (default 1)\n"
     "  --script FILE        knob turns and presses from a file instead of the board's inputs\n"
     "                       (lines 'MS turn KNOB STEPS', 'MS press BUTTON', 'MS release BUTTON', 'MS quit')\n"
@@ -48,7 +49,9 @@ static const char usage[] =
     "Lighting (docs/algorithm.md section 7), for every transfer function the preset button cycles to; each\n"
     "otherwise lit as it says itself:\n"
     VFP_LIGHTING_HELP
-    "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N. Ctrl-C quits.\n";
+    "  --series UID         the DICOM series to show from a folder holding several (default: the largest)\n"
+    "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .mhd/.mha, DICOM (a folder or a file), .den or raw file, or\n"
+    "phantom:NAME:N. Ctrl-C quits.\n";
 
 static vfp_status_t bad(const char *option, const char *value, const char *expected)
 {
@@ -118,9 +121,10 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
                 return bad(a, v, "point, preint1 or preclass");
             o->mode = (vf_mode_t)m;
         } else if (!strcmp(a, "--view")) {
-            int n = v ? sscanf(v, "%lf,%lf,%lf", &o->view[0], &o->view[1], &o->view[2]) : 0;
+            int n = !v ? 0 : vfp_view_named(v, o->view) == VFP_OK ? 3 :
+                    sscanf(v, "%lf,%lf,%lf", &o->view[0], &o->view[1], &o->view[2]);
             if (n < 2)
-                return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees");
+                return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees, or " VFP_VIEW_NAMES);
         } else if (!strcmp(a, "--zoom")) {
             char *end;
             o->zoom = v ? strtod(v, &end) : 0;
@@ -160,6 +164,10 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
                 return VFP_ERR;
             }
             o->load.have_type = 1;
+        } else if (!strcmp(a, "--series")) {
+            if (!v || !v[0])
+                return bad(a, v, "a DICOM Series Instance UID");
+            o->load.series = v;
         } else if (!strcmp(a, "--big-endian")) {
             o->load.big_endian = 1;
             takes = 0;
