@@ -35,6 +35,7 @@ extern "C" {
 #include <gdcmReader.h>
 #include <gdcmSequenceOfItems.h>
 #include <gdcmStringFilter.h>
+#include <gdcmTrace.h>
 
 /*********************
  *      DEFINES
@@ -373,6 +374,12 @@ bool read_slices(const std::string &file, std::vector<Slice> &out)
 
 void load(vfp_volume_t *vol, const std::string &path, const vfp_load_opts_t *opts)
 {
+    /* GDCM prints its own warnings and errors to stderr (a multi-frame file's spacing it cannot compute, a private
+     * tag it does not know), which would break the one-line errors the programs promise: this reader says what
+     * matters itself. The switches are GDCM's process-wide ones; nothing else in volfix uses GDCM. */
+    gdcm::Trace::SetDebug(false);
+    gdcm::Trace::SetWarning(false);
+    gdcm::Trace::SetError(false);
     bool quiet = opts && opts->quiet;
     std::string wanted = opts && opts->series ? opts->series : "";
     struct stat st;

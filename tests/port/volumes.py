@@ -265,6 +265,76 @@ def dicom_series(folder, slices, rows, cols, iop, positions, spacing, bits=16, s
     return files
 
 
+def enhanced_ct(path, slices, rows, cols, iop, positions, spacing, slope, inter, frame_order):
+    """One Enhanced CT file holding every slice as a frame, the frames stored in frame_order; positions, orientation,
+    spacing and rescale in the functional groups, as scanners write them."""
+    from pydicom.dataset import Dataset, FileDataset, FileMetaDataset
+    from pydicom.sequence import Sequence
+    from pydicom.uid import ExplicitVRLittleEndian, generate_uid
+
+    meta = FileMetaDataset()
+    meta.MediaStorageSOPClassUID = "1.2.840.10008.5.1.4.1.1.2.1"  # Enhanced CT Image Storage
+    meta.MediaStorageSOPInstanceUID = generate_uid()
+    meta.TransferSyntaxUID = ExplicitVRLittleEndian
+    ds = FileDataset(path, {}, file_meta=meta, preamble=b"\0" * 128)
+    ds.is_little_endian = True
+    ds.is_implicit_VR = False
+    ds.SOPClassUID = meta.MediaStorageSOPClassUID
+    ds.SOPInstanceUID = meta.MediaStorageSOPInstanceUID
+    ds.Modality = "CT"
+    ds.StudyInstanceUID = generate_uid()
+    ds.SeriesInstanceUID = generate_uid()
+    ds.FrameOfReferenceUID = generate_uid()
+    ds.SeriesDescription = "enhanced CT"
+    ds.Rows = rows
+    ds.Columns = cols
+    ds.NumberOfFrames = len(slices)
+    ds.SamplesPerPixel = 1
+    ds.PhotometricInterpretation = "MONOCHROME2"
+    ds.BitsAllocated = 16
+    ds.BitsStored = 12
+    ds.HighBit = 11
+    ds.PixelRepresentation = 1
+    shared = Dataset()
+    measures = Dataset()
+    measures.PixelSpacing = ["%.6g" % spacing[1], "%.6g" % spacing[0]]
+    measures.SliceThickness = "%.6g" % spacing[2]
+    shared.PixelMeasuresSequence = Sequence([measures])
+    orient = Dataset()
+    orient.ImageOrientationPatient = ["%.6g" % c for c in iop]
+    shared.PlaneOrientationSequence = Sequence([orient])
+    rescale = Dataset()
+    rescale.RescaleSlope = "%.6g" % slope
+    rescale.RescaleIntercept = "%.6g" % inter
+    rescale.RescaleType = "HU"
+    shared.PixelValueTransformationSequence = Sequence([rescale])
+    ds.SharedFunctionalGroupsSequence = Sequence([shared])
+    frames = []
+    for k in frame_order:
+        item = Dataset()
+        pos = Dataset()
+        pos.ImagePositionPatient = ["%.6g" % p for p in positions[k]]
+        item.PlanePositionSequence = Sequence([pos])
+        frames.append(item)
+    ds.PerFrameFunctionalGroupsSequence = Sequence(frames)
+    data = []
+    for k in frame_order:
+        data.extend(slices[k])
+    ds.PixelData = struct.pack("<%dh" % len(data), *data)
+    ds.save_as(path, write_like_original=False)
+
+
+def write_reference_nrrd(path, slices, rows, cols, spacing, type_name, fmt):
+    """The slices as the reader should see them, z = slice order, axis-aligned LPS: for comparing hashes."""
+    data = []
+    for values in slices:
+        data.extend(values)
+    with open(path, "wb") as f:
+        f.write(("NRRD0004\ntype: %s\ndimension: 3\nsizes: %d %d %d\nspacings: %g %g %g\nendian: little\n"
+                 "encoding: raw\n\n" % (type_name, cols, rows, len(slices), *spacing)).encode())
+        f.write(struct.pack("<%d%s" % (len(data), fmt), *data))
+
+
 def phantom_dicom(folder, perm, sign, names_shuffled=True):
     """The phantom as DICOM slices: columns along stored axis 0, rows along 1, slices along 2."""
     dims, vals = stored(phantom(), perm, sign)
@@ -345,12 +415,16 @@ def dicom_cases(out):
         return [[origin[0], origin[1] + k * step * math.tan(math.radians(tilt)), origin[2] + k * step]
                 for k in range(n)]
 
-    # 16-bit signed with a rescale (CT in HU: -1024 + stored), file names in no order
+    # 16-bit signed with a rescale (CT in HU: -1024 + stored), file names in no order; the same as one multi-frame
+    # file with its frames in another order, and as a NRRD
     values = [[(k * 37 + i * 11) % 900 - 300 for i in range(12 * 10)] for k in range(8)]
     names = ["z%02d.dcm" % ((k * 5) % 8) for k in range(8)]
     dicom_series(os.path.join(out, "ct16"), values, 10, 12, axial, along(8, 2.5, (-5, 7, -40)), (0.7, 0.8, 2.5),
                  slope=1.0, inter=-1024.0, names=names, description="CT HU")
-    # 8-bit unsigned, sagittal
+    enhanced_ct(os.path.join(out, "ct16-multiframe.dcm"), values, 10, 12, axial, along(8, 2.5, (-5, 7, -40)),
+                (0.7, 0.8, 2.5), 1.0, -1024.0, [3, 0, 7, 1, 6, 2, 5, 4])
+    write_reference_nrrd(os.path.join(out, "ct16.nrrd"), values, 10, 12, (0.7, 0.8, 2.5), "int16", "h")
+    # 8-bit unsigned, sagittal: a row runs towards P, a column towards I, the slices towards L
     values = [[(k * 29 + i * 7) % 256 for i in range(9 * 11)] for k in range(6)]
     dicom_series(os.path.join(out, "mr8"), values, 11, 9, [0, 1, 0, 0, 0, -1],
                  [[k * 1.5, 0, 0] for k in range(6)], (1.1, 1.2, 1.5), bits=8, signed=False,
