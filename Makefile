@@ -505,11 +505,12 @@ MCU_OPT       := -Os -g -ffunction-sections -fdata-sections -fno-tree-loop-distr
 # The firmware's core leaves out what a 256 KB board does not use (vf_config.h): partial slabs, more than one
 # ray per voxel column, the table built in parts on threads or as compositing reads it, view tables (the lut
 # then corrects each segment), the brute-force table builder (the tests' oracle) and the front-weighted (lit)
-# tables (4.8 KB; the firmware renders without lighting), which keeps the core within
+# tables (4.8 KB; the firmware renders without lighting) and order 2 (preint2: docs/performance.md gives its
+# code and the RAM of its table), which keeps the core within
 # issue 6's 24 KB of code; and its loops look no entry up ahead: on a core without caches that would only add
 # work, 17% more compositing time (qemu's instruction count: 79,819 ticks against 68,503).
 MCU_FEATURES  ?= -DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1 -DVF_MAX_TABLE_PARTS=1 -DVF_VIEW_TABLE=0 -DVF_TABLE_ON_DEMAND=0 \
-                 -DVF_TABLE_ORACLE=0 -DVF_SPECIAL_LOOPS=0 -DVF_LOOK_AHEAD=0 -DVF_LIGHTING=0
+                 -DVF_TABLE_ORACLE=0 -DVF_SPECIAL_LOOPS=0 -DVF_LOOK_AHEAD=0 -DVF_LIGHTING=0 -DVF_ORDER2=0
 MCU_CORE_CFLAGS := -std=c99 -ffreestanding -fno-builtin -Wall -Wextra -Wpedantic -Werror -Wshadow \
                    -Wstrict-prototypes -Wmissing-prototypes -Wconversion -Wno-sign-conversion $(MCU_ARCH) $(MCU_OPT) \
                    $(MCU_FEATURES)

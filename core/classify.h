@@ -58,14 +58,19 @@ static inline bool vfi_range_visible(const vfi_classify_t *cls, uint32_t scalar_
 /* Table position of a sample in Q8.32 for a bilinear lookup: x = s (N - 1) / 255 in Q.16, floor(x 2^16) exactly
  * (so that a sample on an entry reads that entry alone). floor(X / (255 2^16)) with X = s (N - 1) < 2^50 is
  * floor(Y / 255) with Y = X >> 16 < 2^34, divided in two 32-bit steps: Y = 256 hi + lo, hi = 255 q + r. */
-static inline uint32_t vfi_position_of_sample(const vfi_classify_t *cls, uint64_t sample_q32)
+static inline uint32_t vfi_position_of_sample_n(uint32_t n, uint64_t sample_q32)
 {
-    if (cls->n == 256) /* (N - 1) / 255 = 1 */
+    if (n == 256) /* (N - 1) / 255 = 1 */
         return (uint32_t)(sample_q32 >> 16);
-    uint64_t y = (sample_q32 * (cls->n - 1)) >> 16;
+    uint64_t y = (sample_q32 * (n - 1)) >> 16;
     uint32_t hi = (uint32_t)(y >> 8), lo = (uint32_t)(y & 0xFFu);
     uint32_t q = hi / 255u, r = hi - q * 255u;
     return (q << 8) + ((r << 8) | lo) / 255u;
+}
+
+static inline uint32_t vfi_position_of_sample(const vfi_classify_t *cls, uint64_t sample_q32)
+{
+    return vfi_position_of_sample_n(cls->n, sample_q32);
 }
 
 #endif

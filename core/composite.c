@@ -24,7 +24,6 @@
 #define MIN(a, b) ((a) < (b) ? (a) : (b))
 #define MAX(a, b) ((a) > (b) ? (a) : (b))
 
-static void place_slice(const vf_renderer_t *r, uint32_t t, slice_place_t *p);
 static void faces_around(const row_job_t *job, int32_t v, int32_t lo, int32_t hi, int32_t inner_lo, int32_t inner_hi,
                          bool preclass);
 static unsigned char *align_up(unsigned char *p);
@@ -38,7 +37,7 @@ static size_t visits_capacity(uint32_t width)
 size_t vfi_band_scratch_bytes(const vf_renderer_t *r, uint32_t rows)
 {
     size_t bytes = 2 * SCRATCH_ALIGN + sizeof(uint16_t) * rows * ((size_t)r->max_int_w + 1);
-    if (r->params.mode != VF_MODE_PREINT1)
+    if (r->params.mode != VF_MODE_PREINT1 && r->params.mode != VF_MODE_PREINT2) /* preint2: preint1's buffers */
         return bytes;
     const size_t copies = VF_LIGHTING && r->params.lighting ? 2 : 1; /* the buffers, and for lighting their shades */
     if (r->params.buffer == VF_BUFFER_IMAGE)
@@ -70,7 +69,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
      * to the right of the back one (|shear| <= 1), and the plain loops address both from the back's */
     const uint32_t rays = r->params.rays;
     const size_t buf_row = image_buffer ? width : (size_t)rays * (l->ni + 1) + 1, buf_first = image_buffer ? 0 : rays;
-    if (r->params.mode == VF_MODE_PREINT1) {
+    if (r->params.mode == VF_MODE_PREINT1 || r->params.mode == VF_MODE_PREINT2) {
         buf[0] = (uint32_t *)align_up((unsigned char *)(next + (size_t)rows * (width + 1)));
         buf[1] = image_buffer ? buf[0] : buf[0] + rows * buf_row;
         /* lighting's shades a fixed distance after the buffers (composite_order1.c's plain loop) */
@@ -90,7 +89,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     job.cls = &r->cls;
     job.row = l->row;
     job.lookup = r->lookup;
-    job.bilinear = r->params.lookup == VF_LOOKUP_BILINEAR;
+    job.bilinear = r->params.lookup != VF_LOOKUP_NEAREST; /* preint2's trilinear: its last slab's 2D lookup */
     job.sample_shift = r->params.sample_bits ? 32 - r->params.sample_bits : 0;
     job.inter_shift = 16 - r->params.intermediate_bits;
     job.step = VF_MAX_RAYS == 1 ? 65536u : 65536u / rays;
@@ -103,7 +102,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     const bool plain = !r->general_loops && vfi_plain_path(job.bilinear, job.lookup.q15, job.lookup.lut_f, job.sample_shift, job.inter_shift,
                                       rays);
     job.plain = plain && !(VF_LIGHTING && job.shading);
-    job.plain_lit = plain && VF_LIGHTING && job.shading && !job.shading->ramp;
+    job.plain_lit = plain && VF_LIGHTING && job.shading && job.shading->shade && !job.shading->ramp;
     job.grey = r->tf_grey;
     const vfi_runs_t *runs = &r->runs[f->k_axis];
     const bool partial = VF_PARTIAL_SLABS && r->params.partial_slabs; /* constant 0 in builds without them */
@@ -116,16 +115,29 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
 #endif
     slice_place_t place[3];
 
+#if VF_ORDER2
+    if (r->params.mode == VF_MODE_PREINT2) { /* slabs of two slices: composite_order2.c */
+        vfi_band_t b;
+        b.v0 = v0, b.v1 = v1;
+        b.next = next;
+        b.buf[0] = buf[0], b.buf[1] = buf[1];
+        b.buf_row = buf_row, b.buf_first = buf_first;
+        b.visits = visits;
+        vfi_band_order2(r, &job, &b);
+        row_extents(r, v0, v1);
+        return VF_OK;
+    }
+#endif
     if (r->params.mode != VF_MODE_PREINT1) {
         const bool preclass = r->params.mode == VF_MODE_PRECLASS;
         for (uint32_t t = 0; t < l->nk; t++) {
             slice_place_t *sl = &place[0];
-            place_slice(r, t, sl);
+            vfi_place_slice(r, t, sl);
             job.before = job.after = NULL;
             if (partial && t > 0)
-                place_slice(r, t - 1, &place[1]), job.before = &place[1];
+                vfi_place_slice(r, t - 1, &place[1]), job.before = &place[1];
             if (partial && t + 1 < l->nk)
-                place_slice(r, t + 1, &place[2]), job.after = &place[2];
+                vfi_place_slice(r, t + 1, &place[2]), job.after = &place[2];
             /* with partial slabs, the pixels whose neighbours' samples are inside take a whole slab as always;
              * the others, and all of the first and last slice, a length of their own (vfi_faces_order0) */
             slice_place_t whole = *sl;
@@ -167,11 +179,11 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
         return VF_OK;
     }
 
-    place_slice(r, 0, &place[0]);
+    vfi_place_slice(r, 0, &place[0]);
     for (uint32_t t = 0; t + 1 < l->nk; t++) {
         const slice_place_t *front = &place[t & 1];
         slice_place_t *back = &place[(t + 1) & 1];
-        place_slice(r, t + 1, back);
+        vfi_place_slice(r, t + 1, back);
         uint32_t kc = f->k_flip ? l->nk - 2 - t : t;
         /* rows and pixels where both samples are inside */
         const int32_t lo = MAX(MAX(front->v_lo, back->v_lo), (int32_t)v0);
@@ -215,7 +227,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     return VF_OK;
 }
 
-static void place_slice(const vf_renderer_t *r, uint32_t t, slice_place_t *p)
+void vfi_place_slice(const vf_renderer_t *r, uint32_t t, slice_place_t *p)
 {
     const vf_factor_t *f = &r->factor;
     const vfi_layout_t *l = &r->layout[f->k_axis];

@@ -110,6 +110,22 @@ typedef struct vfi_slab_rows {
 
 void vfi_slab_preint1(row_job_t *job, const vfi_slab_rows_t *slab);
 
+/* Where standard slice t lands in the intermediate image of the frame begun (composite.c). */
+void vfi_place_slice(const vf_renderer_t *r, uint32_t t, slice_place_t *p);
+
+/* preint2 (composite_order2.c): a band's slabs of two slices, and the last slab of one when the slab count is odd,
+ * with the scratch composite.c carved as for preint1 (next, the two buffers and their row layout, the visits) and
+ * job set up as for preint1 (the 2D table's lookup, for that last slab). */
+typedef struct vfi_band {
+    uint32_t v0, v1;
+    uint16_t *next;
+    uint32_t *buf[2];
+    size_t buf_row, buf_first;
+    row_visits_t *visits;
+} vfi_band_t;
+
+void vfi_band_order2(const vf_renderer_t *r, row_job_t *job, const vfi_band_t *band);
+
 /* The slice row that intermediate row v (inside the slice) samples, its index j and fraction fy to the next. */
 static inline const uint8_t *vfi_slice_row(const slice_place_t *sl, uint32_t row_bytes, uint32_t step, int32_t v,
                                            uint32_t *j, uint32_t *fy)
@@ -262,7 +278,7 @@ static inline vfi_shade_t vfi_voxel_shade(const vfi_shading_t *sh, const uint8_t
     const size_t at = (size_t)(p - sh->slices);
     vfi_shade_t out = {VFI_SHADE_ONE, 0, 32768u};
     if (sh->shade) {
-        const uint32_t e = sh->shade[sh->codes[at]];
+        const uint64_t e = sh->shade[sh->codes[at]];
         out.d = vfi_shade_diffuse(e), out.s = vfi_shade_specular(e);
     }
     if (sh->ramp)

@@ -90,8 +90,8 @@ static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_
             uint32_t seg[4] = {e[0], e[1], e[2], e[3]};
             vfi_shade_t shade;
             if (nearest) {
-                const uint32_t packed = sh->shade[codes[u]];
-                shade.d = packed & 0xFFFFu, shade.s = packed >> 16, shade.g = 32768u;
+                const uint64_t lit = sh->shade[codes[u]];
+                shade.d = vfi_shade_diffuse(lit), shade.s = vfi_shade_specular(lit), shade.g = 32768u;
             } else {
                 shade = vfi_sample_shade(sh, p, row, fx, fy);
             }

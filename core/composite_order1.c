@@ -129,25 +129,31 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
     if (n256)
         l.n = 256;
     const vfi_shading_t *sh = pr->shading;
-    const uint32_t *shade = sh->shade;
-    const size_t off = pr->shade_offset;
+    const uint64_t *shade = sh->shade;
+    const size_t off = pr->shade_offset, back_at = (size_t)(l.top - sh->slices);
+    uint64_t right = 0;          /* bilinear: the last pixel's right column, the left one of the pixel after it */
+    uint32_t last_c = UINT32_MAX - 1;
     for (; u < y; u = vfi_next_open(l.next, u + 1)) {
         const uint32_t c = u - l.cu;
         /* the front shade read before the back one is stored: an image-sized buffer holds both in one place */
         uint32_t front = buffered ? l.front_buf[c + off] : 0, back;
         const uint16_t *e = plain_entry(&l, pr, u, buffered, n256);
+        if (VF_TABLE_ON_DEMAND && !e[3] && e[0] == VFI_UNBUILT_Q15) /* its diagonal, the lit values with it */
+            build_entry(pr->demand, l.table, l.n, e);
         if (nearest) {
-            back = shade[pr->back_codes[c]];
+            back = vfi_shade_pack(shade[pr->back_codes[c]]);
         } else {
-            const vfi_shade_t b = vfi_sample_shade(sh, l.top + c, pr->row, l.fx, l.fy);
-            back = b.d | b.s << 16;
+            const uint64_t left = c == last_c + 1 ? right : vfi_shade_column(sh, back_at + c, pr->row, l.fy);
+            right = vfi_shade_column(sh, back_at + c + 1, pr->row, l.fy);
+            last_c = c;
+            back = vfi_shade_pack(vfi_lanes_lerp(left, right, l.fx));
         }
         l.back_buf[c + off] = back; /* the next slab's front shade, as its position is */
         const uint32_t a = e[3];
         if (!a)
             continue;
         if (!buffered && nearest) {
-            front = shade[pr->front_codes[u]];
+            front = vfi_shade_pack(shade[pr->front_codes[u]]);
         } else if (!buffered) {
             const vfi_shade_t f = vfi_sample_shade(sh, pr->front + (u - pr->front_cu), pr->row, pr->front_fx,
                                                    pr->front_fy);

@@ -536,12 +536,19 @@ typedef struct entry_q15 {
 typedef struct entry_u8 {
     uint8_t v[4];
 } entry_u8_t;
+typedef struct entry_q30 {
+    uint32_t v[4];
+} entry_q30_t;
 
 /* Entries up and down from the entries distance before each: a window's entries equal to the previous one's. */
 static inline void copy_pair(vfi_table_out_t out, size_t up, size_t down, size_t distance)
 {
     if (out.q15) {
         entry_q15_t *e = (entry_q15_t *)out.q15;
+        e[up] = e[up - distance];
+        e[down] = e[down - distance];
+    } else if (VF_ORDER2 && out.q30) {
+        entry_q30_t *e = (entry_q30_t *)out.q30;
         e[up] = e[up - distance];
         e[down] = e[down - distance];
     } else {

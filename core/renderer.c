@@ -21,20 +21,41 @@ static bool on_demand(const vf_renderer_t *r);
 #endif
 static bool tables_complete(const vf_renderer_t *r);
 static inline vfi_table_out_t table_out(const vf_renderer_t *r);
-static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol);
 
-/* The table builders' scratch: with lighting, preint1's also builds the front-weighted table, which needs more. */
+/* Whether lit frames take the general loops though the path is plain: gradient opacity (composite.c). */
+static inline bool lit_general(const vf_renderer_t *r)
+{
+#if VF_LIGHTING
+    return r->lit && r->lighting.gradient_hi;
+#else
+    (void)r;
+    return false;
+#endif
+}
+#if VF_ORDER2
+static inline vfi_table_out_t table2_out(const vf_renderer_t *r);
+#endif
+static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol);
+static size_t order2_bytes(const vf_params_t *p);
+
+/* The modes with a 2D table: preint1, and preint2 (its last slab when the slab count is odd, and its pieces). */
+static bool has_2d_table(const vf_params_t *p)
+{
+    return p->mode == VF_MODE_PREINT1 || p->mode == VF_MODE_PREINT2;
+}
+
+/* The table builders' scratch: with lighting, the 2D table's builder also builds the front-weighted table, which
+ * needs more. */
 static size_t scratch_bytes(const vf_params_t *p)
 {
-    return VF_LIT_TABLES && p->lighting && p->mode == VF_MODE_PREINT1 ? vfi_table_scratch_lit_bytes(p->table_size)
-                                                                       : vfi_table_scratch_bytes(p->table_size);
+    return VF_LIT_TABLES && p->lighting && has_2d_table(p) ? vfi_table_scratch_lit_bytes(p->table_size)
+                                                           : vfi_table_scratch_bytes(p->table_size);
 }
 
 static vf_status_t scratch_alloc(const vf_params_t *p, vfi_table_scratch_t *scratch, vf_arena_t *arena)
 {
-    return VF_LIT_TABLES && p->lighting && p->mode == VF_MODE_PREINT1
-               ? vfi_table_scratch_alloc_lit(scratch, p->table_size, arena)
-               : vfi_table_scratch_alloc(scratch, p->table_size, arena);
+    return VF_LIT_TABLES && p->lighting && has_2d_table(p) ? vfi_table_scratch_alloc_lit(scratch, p->table_size, arena)
+                                                           : vfi_table_scratch_alloc(scratch, p->table_size, arena);
 }
 static size_t lit_table_bytes(const vf_params_t *p);
 #if VF_LIGHTING
@@ -60,7 +81,8 @@ void vf_params_default(vf_params_t *p)
     p->background[0] = p->background[1] = p->background[2] = 0;
     p->lighting = false;
     p->normal_bits = 14;
-    p->shade_lookup = VF_LOOKUP_BILINEAR;
+    p->shade_lookup = VF_LOOKUP_NEAREST; /* docs/usage.md: what bilinear costs and what it buys */
+    p->table2_size = VF_DEFAULT_TABLE2;
 }
 
 void vf_lighting_default(vf_lighting_t *l)
@@ -92,7 +114,7 @@ vf_status_t vf_renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, size
     size_t total = VFI_ALIGN + vfi_arena_block(sizeof(vf_renderer_t));
     for (int a = 0; a < 3; a++)
         total += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
-    total += vfi_classify_bytes(n) + table_bytes(p) + lit_table_bytes(p) + normals_bytes(p, vol);
+    total += vfi_classify_bytes(n) + table_bytes(p) + lit_table_bytes(p) + normals_bytes(p, vol) + order2_bytes(p);
     total += vfi_arena_block(sizeof(uint16_t) * 4 * intermediate_pixels(vol->dims, p->rays, &w, &ni)) +
              extent_bytes(vol->dims, p->rays);
     *bytes = total;
@@ -124,7 +146,8 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     }
     const uint32_t n = p->table_size;
     const bool lut = p->correction == VF_CORRECTION_LUT;
-    s = vfi_classify_alloc(&r->cls, n, p->lookup, arena);
+    /* a trilinear lookup's last slab, of one slice, looks its 2D entries up bilinearly */
+    s = vfi_classify_alloc(&r->cls, n, p->lookup == VF_LOOKUP_TRILINEAR ? VF_LOOKUP_BILINEAR : p->lookup, arena);
     if (s == VF_OK)
         s = scratch_alloc(p, &r->table_scratch, arena);
     r->table = vfi_arena_alloc(arena, table_entries(p) * 4 * table_value_bytes(p));
@@ -144,6 +167,18 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     if (p->lighting && !lighting_alloc(r, arena))
         return VF_ERR_NOMEM;
 #endif
+#if VF_ORDER2
+    if (p->mode == VF_MODE_PREINT2) {
+        const size_t values = (size_t)p->table2_size * p->table2_size * p->table2_size * 4 * table_value_bytes(p);
+        vfi_order2_scalar_entries(&r->cls, p->table2_size, p->lookup == VF_LOOKUP_TRILINEAR);
+        r->table2 = vfi_arena_alloc(arena, values);
+        if (p->lighting)
+            r->lit_table2 = vfi_arena_alloc(arena, 2 * values);
+        if (!r->table2 || (p->lighting && !r->lit_table2) ||
+            vfi_order2_pieces_alloc(&r->pieces, n, p->lighting, arena) != VF_OK)
+            return VF_ERR_NOMEM;
+    }
+#endif
     r->runs_mark = arena->used;
 
     r->memory.renderer = vfi_arena_block(sizeof *r);
@@ -155,6 +190,7 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
                              extent_bytes(vol->dims, p->rays);
     r->memory.tables += lit_table_bytes(p);
     r->memory.normals = normals_bytes(p, vol);
+    r->memory.order2 = order2_bytes(p);
     *out = r;
     return VF_OK;
 }
@@ -282,6 +318,13 @@ vf_status_t vf_renderer_build_table_part(vf_renderer_t *r, uint32_t part, void *
     if (bytes < vf_renderer_table_part_bytes(r))
         return VF_ERR_NOMEM; /* the promised size, whatever the buffer's alignment */
     const vfi_table_out_t out = table_out(r);
+#if VF_ORDER2
+    if (r->params.mode == VF_MODE_PREINT2) { /* the 3D table's part; begin built its pieces */
+        vfi_order2_table_part(&r->pieces, r->params.table2_size, table2_out(r), part, r->table_parts);
+        r->table_part_done[part] = true;
+        return VF_OK;
+    }
+#endif
     if (r->parts_build) {
         vf_arena_t arena;
         vfi_table_scratch_t ts;
@@ -355,7 +398,7 @@ const uint16_t *vfi_renderer_intermediate(const vf_renderer_t *r)
 
 const uint16_t *vfi_renderer_point_table(const vf_renderer_t *r)
 {
-    return r && r->tables_valid && tables_complete(r) && r->params.table_bits != 8 && r->params.mode != VF_MODE_PREINT1
+    return r && r->tables_valid && tables_complete(r) && r->params.table_bits != 8 && !has_2d_table(&r->params)
                ? r->table
                : NULL;
 }
@@ -366,9 +409,31 @@ const uint16_t *vfi_renderer_preint_table(const vf_renderer_t *r)
     if (r && r->table_unbuilt)
         return NULL;
 #endif
-    return r && r->tables_valid && tables_complete(r) && r->params.table_bits != 8 && r->params.mode == VF_MODE_PREINT1
+    return r && r->tables_valid && tables_complete(r) && r->params.table_bits != 8 && has_2d_table(&r->params)
                ? r->table
                : NULL;
+}
+
+const uint16_t *vfi_renderer_order2_table(const vf_renderer_t *r)
+{
+#if VF_ORDER2
+    return r && r->tables_valid && tables_complete(r) && r->params.table_bits != 8 ? r->table2 : NULL;
+#else
+    (void)r;
+    return NULL;
+#endif
+}
+
+const uint16_t *vfi_renderer_order2_lit_table(const vf_renderer_t *r)
+{
+#if VF_ORDER2 && VF_LIGHTING
+    return r && r->tables_valid && tables_complete(r) && r->params.table_bits != 8 && r->lit_table_valid
+               ? r->lit_table2
+               : NULL;
+#else
+    (void)r;
+    return NULL;
+#endif
 }
 
 static vf_status_t check_params(const vf_params_t *p)
@@ -387,7 +452,15 @@ static vf_status_t check_params(const vf_params_t *p)
      * too few bits of a nearly opaque slab's transmittance for a part of it (docs/algorithm.md, section 4c) */
     if (p->rays > VF_MAX_RAYS || (p->partial_slabs && (!VF_PARTIAL_SLABS || p->correction == VF_CORRECTION_LUT)))
         return VF_ERR_UNSUPPORTED;
-    if (p->normal_bits < 8 || p->normal_bits > 16 || p->normal_bits % 2 || (unsigned)p->shade_lookup >= VF_LOOKUP_COUNT)
+    /* preint2: a trilinear lookup (its own, and only its); its table's size; builds without it, and partial slabs,
+     * which it does not shorten (docs/algorithm.md, section 8) */
+    if ((p->lookup == VF_LOOKUP_TRILINEAR) != (p->mode == VF_MODE_PREINT2 && p->lookup != VF_LOOKUP_NEAREST) ||
+        (p->mode == VF_MODE_PREINT2 && (p->table2_size < VF_MIN_TABLE2 || p->table2_size > VF_MAX_TABLE2)))
+        return VF_ERR_ARG;
+    if (p->mode == VF_MODE_PREINT2 && (!VF_ORDER2 || p->partial_slabs))
+        return VF_ERR_UNSUPPORTED;
+    if (p->normal_bits < 8 || p->normal_bits > 16 || p->normal_bits % 2 ||
+        (unsigned)p->shade_lookup > VF_LOOKUP_BILINEAR) /* a shade is nearest or bilinear, never trilinear */
         return VF_ERR_ARG;
     /* lighting in builds without it, and lighting with partial slabs: docs/algorithm.md, section 7 */
     if (p->lighting && (!VF_LIGHTING || p->partial_slabs))
@@ -428,7 +501,7 @@ static size_t table_value_bytes(const vf_params_t *p)
 
 static size_t table_entries(const vf_params_t *p)
 {
-    return p->mode == VF_MODE_PREINT1 ? (size_t)p->table_size * p->table_size : p->table_size;
+    return has_2d_table(p) ? (size_t)p->table_size * p->table_size : p->table_size;
 }
 
 static size_t table_bytes(const vf_params_t *p)
@@ -450,15 +523,31 @@ static size_t table_bytes(const vf_params_t *p)
 static bool has_view_table(const vf_params_t *p)
 {
     return VF_VIEW_TABLE && p->correction == VF_CORRECTION_LUT && p->lookup == VF_LOOKUP_NEAREST &&
-           p->mode != VF_MODE_PRECLASS && p->table_bits != 8 && p->table_size <= 512 && !p->lighting;
+           p->mode != VF_MODE_PRECLASS && p->mode != VF_MODE_PREINT2 && p->table_bits != 8 && p->table_size <= 512 &&
+           !p->lighting;
 }
 
-/* The front-weighted table beside preint1's 2D table, in its format (docs/algorithm.md, section 7). */
+/* The front-weighted table beside the 2D table, in its format (docs/algorithm.md, section 7). */
 static size_t lit_table_bytes(const vf_params_t *p)
 {
-    if (!VF_LIGHTING || !p->lighting || p->mode != VF_MODE_PREINT1)
+    if (!VF_LIGHTING || !p->lighting || !has_2d_table(p))
         return 0;
     return vfi_arena_block(table_entries(p) * 4 * table_value_bytes(p));
+}
+
+/* preint2's 3D table (with lighting, its eight front- and back-weighted values an entry) and pieces. There is no
+ * view table of it: the lut corrects each segment (a 3D view table would double the largest part of the memory). */
+static size_t order2_bytes(const vf_params_t *p)
+{
+    if (!VF_ORDER2 || p->mode != VF_MODE_PREINT2)
+        return 0;
+    const size_t values = (size_t)p->table2_size * p->table2_size * p->table2_size * 4 * table_value_bytes(p);
+#if VF_ORDER2
+    return vfi_arena_block(values) + (p->lighting ? vfi_arena_block(2 * values) : 0) +
+           vfi_order2_pieces_bytes(p->table_size, p->lighting);
+#else
+    return values;
+#endif
 }
 
 /* Normal codes and magnitudes per copy, the codes' unit normals, the shade table and the ramp. */
@@ -471,7 +560,7 @@ static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol)
     for (int a = 0; a < 3; a++)
         bytes += vfi_arena_block(sizeof(uint16_t) * vfi_slices_bytes(vol->dims, a)) +
                  vfi_arena_block(vfi_slices_bytes(vol->dims, a));
-    return bytes + vfi_arena_block(sizeof(int32_t) * 3 * codes) + vfi_arena_block(sizeof(uint32_t) * codes) +
+    return bytes + vfi_arena_block(sizeof(int32_t) * 3 * codes) + vfi_arena_block(sizeof(uint64_t) * codes) +
            vfi_arena_block(sizeof(uint16_t) * 256);
 }
 
@@ -489,11 +578,11 @@ static bool lighting_alloc(vf_renderer_t *r, vf_arena_t *arena)
             return false;
     }
     r->unit = vfi_arena_alloc(arena, sizeof(int32_t) * 3 * r->code_count);
-    r->shade = vfi_arena_alloc(arena, sizeof(uint32_t) * r->code_count);
+    r->shade = vfi_arena_alloc(arena, sizeof(uint64_t) * r->code_count);
     r->ramp = vfi_arena_alloc(arena, sizeof(uint16_t) * 256);
-    if (p->mode == VF_MODE_PREINT1)
+    if (has_2d_table(p))
         r->lit_table = vfi_arena_alloc(arena, table_entries(p) * 4 * table_value_bytes(p));
-    if (!r->unit || !r->shade || !r->ramp || (p->mode == VF_MODE_PREINT1 && !r->lit_table))
+    if (!r->unit || !r->shade || !r->ramp || (has_2d_table(p) && !r->lit_table))
         return false;
     vfi_normals_build(&r->volume, levels, r->codes, r->magnitudes);
     vfi_normals_decode(levels, r->unit);
@@ -609,6 +698,19 @@ static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
     r->lookup.lit_u8 = out.lit_u8;
     r->lookup.lut_f = lut && !view ? r->lut_f : NULL;
     r->lookup.lut_g = lut && !view ? r->lut_g : NULL;
+#if VF_ORDER2
+    const bool order2 = r->params.mode == VF_MODE_PREINT2;
+    if (order2) {
+        const vfi_table_out_t out2 = table2_out(r);
+        r->lookup2.q15 = out2.q15;
+        r->lookup2.u8 = out2.u8;
+        r->lookup2.lit_q15 = out2.lit_q15;
+        r->lookup2.lit_u8 = out2.lit_u8;
+        r->lookup2.n2 = r->params.table2_size;
+    }
+#else
+    const bool order2 = false;
+#endif
 #if VF_TABLE_ON_DEMAND
     const bool demand = one_thread && on_demand(r);
 #else
@@ -635,13 +737,24 @@ static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
     const bool correct = view && (build || r->view_slab_q16 != slab);
     if (build || correct) {
         const bool preint = r->params.mode == VF_MODE_PREINT1;
-        const uint32_t split = VF_MAX_TABLE_PARTS > 1 && preint && parts > 1 ? parts : 0;
+        const uint32_t split = VF_MAX_TABLE_PARTS > 1 && (preint || order2) && parts > 1 ? parts : 0;
         if (VF_MAX_TABLE_PARTS > 1) { /* constant 0 in builds for one core, which never read them */
             r->table_parts = split;
             r->parts_build = build;
         }
         for (uint32_t p = 0; p < split; p++)
             r->table_part_done[p] = false;
+#if VF_ORDER2
+        /* preint2: the 2D table (the last slab's) and the 3D table's pieces here, one after the other in the one
+         * scratch; the 3D table here too, or in its parts */
+        if (order2 && build) {
+            const bool lit = VF_LIT_TABLES && (out.lit_q15 || out.lit_u8);
+            vfi_preint_table_incremental(&r->cls, table_slab, &r->table_scratch, out);
+            vfi_order2_pieces_build(&r->pieces, &r->cls, table_slab, &r->table_scratch, lit);
+            if (split == 0)
+                vfi_order2_table_part(&r->pieces, r->params.table2_size, table2_out(r), 0, 1);
+        } else
+#endif
         if (split == 0 && build) {
 #if VF_TABLE_ON_DEMAND
             if (demand)
@@ -663,15 +776,16 @@ static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
     }
 }
 
-/* Whether a frame on one thread builds its 2D table as compositing reads it: when the one loop that reads the
- * table is composite_order1.c's span_plain (the plain path, after update_tables has set the lookup), and without
- * the lut, whose view table is made from every entry, or partial slabs, whose faces read the table elsewhere. */
+/* Whether a frame on one thread builds its 2D table as compositing reads it: when the loops that read the table
+ * are composite_order1.c's span_plain or span_plain_lit (the plain path, after update_tables has set the lookup),
+ * and without the lut, whose view table is made from every entry, or partial slabs, whose faces read the table
+ * elsewhere. A lit frame's diagonals bring their front-weighted values with them. */
 #if VF_TABLE_ON_DEMAND
 static bool on_demand(const vf_renderer_t *r)
 {
     const vf_params_t *p = &r->params;
-    return p->mode == VF_MODE_PREINT1 && p->correction == VF_CORRECTION_REBUILD && !p->partial_slabs && !vfi_lit(r) &&
-           !r->general_loops &&
+    return p->mode == VF_MODE_PREINT1 && p->correction == VF_CORRECTION_REBUILD && !p->partial_slabs &&
+           !r->general_loops && !lit_general(r) &&
            vfi_plain_path(p->lookup == VF_LOOKUP_BILINEAR, r->lookup.q15, r->lookup.lut_f, p->sample_bits,
                           16 - p->intermediate_bits, p->rays);
 }
@@ -687,6 +801,26 @@ static bool tables_complete(const vf_renderer_t *r)
     return true;
 }
 
+#if VF_ORDER2
+/* preint2's 3D table in the 2D table's format, with its lit values when frames are lit. */
+static inline vfi_table_out_t table2_out(const vf_renderer_t *r)
+{
+    vfi_table_out_t out;
+    vfi_zero(&out, sizeof out);
+    const bool bits16 = r->params.table_bits != 8;
+    out.q15 = bits16 ? r->table2 : NULL;
+    out.u8 = bits16 ? NULL : r->table2;
+    out.grid_bits = r->params.table_bits == 10 || r->params.table_bits == 12 ? r->params.table_bits : 0;
+#if VF_LIGHTING
+    if (r->lit && r->lit_table2) {
+        out.lit_q15 = bits16 ? r->lit_table2 : NULL;
+        out.lit_u8 = bits16 ? NULL : r->lit_table2;
+    }
+#endif
+    return out;
+}
+#endif
+
 static inline vfi_table_out_t table_out(const vf_renderer_t *r)
 {
     vfi_table_out_t out;
@@ -695,8 +829,9 @@ static inline vfi_table_out_t table_out(const vf_renderer_t *r)
     out.u8 = bits16 ? NULL : r->table;
     out.grid_bits = r->params.table_bits == 10 || r->params.table_bits == 12 ? r->params.table_bits : 0;
     out.lit_q15 = NULL, out.lit_u8 = NULL;
+    out.q30 = NULL, out.lit_q30 = NULL;
 #if VF_LIGHTING
-    if (r->lit && r->lit_table) { /* preint1 with lighting on */
+    if (r->lit && r->lit_table) { /* preint1 or preint2 with lighting on */
         out.lit_q15 = bits16 ? r->lit_table : NULL;
         out.lit_u8 = bits16 ? NULL : r->lit_table;
     }

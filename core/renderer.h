@@ -11,6 +11,7 @@
 
 #include "classify.h"
 #include "normals.h"
+#include "preint2.h"
 #include "runs.h"
 #include "shade.h"
 #include "slices.h"
@@ -71,7 +72,7 @@ struct vf_renderer {
     uint8_t *magnitudes[3];
     int32_t *unit;           /* [codes][3] unit normals, Q1.30 */
     uint32_t code_count;
-    uint32_t *shade;         /* [code_count] */
+    uint64_t *shade;         /* [code_count] L_d and L_s in lanes (shade.h) */
     uint16_t *ramp;          /* [256] gradient-opacity factors */
     void *lit_table;
     uint16_t *lit_view_table;
@@ -82,6 +83,16 @@ struct vf_renderer {
     bool shade_valid;
     bool lit_table_valid;    /* the front-weighted table is of the 2D table's transfer function and length */
     vfi_shading_t shading;   /* what the frame's bands read (its copy's arrays set per frame) */
+#endif
+
+#if VF_ORDER2
+    /* preint2 (docs/algorithm.md, section 8): the 3D table, beside the 2D table (which holds the last slab's
+     * entries when a volume has an odd number of slabs) and built with it, from its pieces; with lighting the 3D
+     * table's front- and back-weighted values (eight an entry), built when a lit frame needs them. */
+    void *table2;
+    void *lit_table2;
+    vfi_order2_pieces_t pieces;
+    vfi_lookup2_t lookup2;
 #endif
 
     vf_factor_t factor;

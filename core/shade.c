@@ -16,7 +16,7 @@ static uint32_t unorm16_q30(uint16_t v);
 static uint32_t q30_to_q14(uint64_t v);
 
 void vfi_shade_table(int32_t r[3][3], const vf_lighting_t *lighting, const int32_t *unit, uint32_t count,
-                     uint32_t *shade)
+                     uint64_t *shade)
 {
     /* towards light l and its half vector with V = (0, 0, -1), in eye axes, then in world axes (R^T) */
     int64_t light_w[VF_MAX_LIGHTS][3], half_w[VF_MAX_LIGHTS][3];
@@ -57,7 +57,7 @@ void vfi_shade_table(int32_t r[3][3], const vf_lighting_t *lighting, const int32
         }
         const uint32_t ld = q30_to_q14(ka + ((kd * diffuse + (UINT64_C(1) << 29)) >> 30));
         const uint32_t ls = q30_to_q14((ks * specular + (UINT64_C(1) << 29)) >> 30);
-        shade[code] = ld | ls << 16;
+        shade[code] = ld | (uint64_t)ls << 32;
     }
     shade[count - 1] = ambient; /* no normal: ambient light alone */
 }

@@ -29,13 +29,17 @@ const char *vf_mode_name(vf_mode_t mode)
     case VF_MODE_POINT: return "point";
     case VF_MODE_PREINT1: return "preint1";
     case VF_MODE_PRECLASS: return "preclass";
+    case VF_MODE_PREINT2: return "preint2";
     default: return "unknown";
     }
 }
 
 const char *vf_lookup_name(vf_lookup_t lookup)
 {
-    return lookup == VF_LOOKUP_NEAREST ? "nearest" : lookup == VF_LOOKUP_BILINEAR ? "bilinear" : "unknown";
+    return lookup == VF_LOOKUP_NEAREST    ? "nearest"
+           : lookup == VF_LOOKUP_BILINEAR  ? "bilinear"
+           : lookup == VF_LOOKUP_TRILINEAR ? "trilinear"
+                                           : "unknown";
 }
 
 const char *vf_correction_name(vf_correction_t correction)

@@ -65,18 +65,34 @@ static inline void vfi_store_values_q30(uint16_t *q15, uint8_t *u8, uint32_t gri
     }
 }
 
+/* Four Q.30 values as they are (order 2's pieces, preint2.h). */
+static inline void vfi_put_q30(uint32_t *q30, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a)
+{
+    uint32_t *e = q30 + entry * 4;
+    e[0] = r;
+    e[1] = g;
+    e[2] = b;
+    e[3] = a;
+}
+
 /* Entry `entry` of the table: r, g, b premultiplied and opacity a, Q.30. Inline: a call from preint.c's loops,
  * even one taken for the 8-bit and grid formats only, leaves the default format's loop fewer registers for its runs. */
 static inline void vfi_store_q30(vfi_table_out_t out, size_t entry, uint32_t r, uint32_t g, uint32_t b, uint32_t a)
 {
-    vfi_store_values_q30(out.q15, out.u8, out.grid_bits, entry, r, g, b, a);
+    if (VF_ORDER2 && out.q30) /* order 2's pieces, kept as they are */
+        vfi_put_q30(out.q30, entry, r, g, b, a);
+    else
+        vfi_store_values_q30(out.q15, out.u8, out.grid_bits, entry, r, g, b, a);
 }
 
 /* The entry's front-weighted values D_f r, g, b and S_f, Q.30, into out.lit_q15 or out.lit_u8. */
 static inline void vfi_store_lit_q30(vfi_table_out_t out, size_t entry, uint32_t r, uint32_t g, uint32_t b,
                                      uint32_t a)
 {
-    vfi_store_values_q30(out.lit_q15, out.lit_u8, out.grid_bits, entry, r, g, b, a);
+    if (VF_ORDER2 && out.lit_q30)
+        vfi_put_q30(out.lit_q30, entry, r, g, b, a);
+    else
+        vfi_store_values_q30(out.lit_q15, out.lit_u8, out.grid_bits, entry, r, g, b, a);
 }
 
 #endif

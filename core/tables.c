@@ -317,7 +317,7 @@ static vf_status_t build(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, int w
     if (s == VF_OK)
         s = vfi_classify(&cls, tf);
     if (s == VF_OK) {
-        vfi_table_out_t to = {out, NULL, 0, lit_out, NULL};
+        vfi_table_out_t to = {out, NULL, 0, lit_out, NULL, NULL, NULL};
         if (which == 0)
             vfi_point_table(&cls, slab_q16, to);
         else if (which == 1 + VF_BUILDER_INCREMENTAL)

@@ -25,13 +25,17 @@ typedef struct vfi_table_out {
     uint32_t grid_bits;
     uint16_t *lit_q15; /* the front-weighted table (docs/algorithm.md, section 7) in the same format, or both NULL */
     uint8_t *lit_u8;
+    /* Order 2 (preint2.h): the pieces' table in Q.30 as the builder has it, not rounded (q15 and u8 then NULL),
+     * and its front-weighted values the same way (lit_q15 and lit_u8 then NULL). NULL in every other build. */
+    uint32_t *q30;
+    uint32_t *lit_q30;
 } vfi_table_out_t;
 
 /* Whether a builder is asked for lit outputs: never in builds without them (vf_config.h, VF_LIT_TABLES), whose
  * lit code is then dead and left out. */
 static inline bool vfi_table_out_lit(vfi_table_out_t out)
 {
-    return VF_LIT_TABLES && (out.lit_q15 || out.lit_u8);
+    return VF_LIT_TABLES && (out.lit_q15 || out.lit_u8 || (VF_ORDER2 && out.lit_q30));
 }
 
 /* What compositing reads: one table (point or 2D) in one of the two formats, and the lut correction. */

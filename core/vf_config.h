@@ -78,6 +78,25 @@
 #define VF_LIGHTING 1
 #endif
 
+/* Order 2 (docs/algorithm.md section 8, mode preint2): the 3D table of second-order pre-integration, built from
+ * first-order pieces (preint2.c), and its compositing loop (composite_order2.c). 0 leaves it out, and a renderer
+ * asked for preint2 gets VF_ERR_UNSUPPORTED. */
+#ifndef VF_ORDER2
+#define VF_ORDER2 1
+#endif
+
+/* Order-2 table sizes a renderer accepts (entries a side of the N2^3 table, vf_params_t.table2_size), and the
+ * default. */
+#ifndef VF_MIN_TABLE2
+#define VF_MIN_TABLE2 16
+#endif
+#ifndef VF_MAX_TABLE2
+#define VF_MAX_TABLE2 128
+#endif
+#ifndef VF_DEFAULT_TABLE2
+#define VF_DEFAULT_TABLE2 64
+#endif
+
 /* Most control points in a transfer function. */
 #ifndef VF_MAX_TF_POINTS
 #define VF_MAX_TF_POINTS 1024

@@ -109,12 +109,17 @@ typedef enum vf_mode {
     VF_MODE_POINT,    /* order 0: point-sampled post-classification, one table entry per slice sample */
     VF_MODE_PREINT1,  /* order 1: pre-integrated slabs, one 2D table entry per (front, back) sample pair */
     VF_MODE_PRECLASS, /* order 0, pre-classified: voxels classified first, their RGBA interpolated (VolPack) */
+    VF_MODE_PREINT2,  /* order 2: slabs of two slices, one 3D table entry per (front, middle, back) sample triple
+                       * (El Hajjar et al. 2008; docs/algorithm.md, section 8), table2_size entries a side;
+                       * VF_ERR_UNSUPPORTED in builds without VF_ORDER2, and with partial slabs */
     VF_MODE_COUNT
 } vf_mode_t;
 
 typedef enum vf_lookup {
     VF_LOOKUP_NEAREST,  /* the nearest table entry of each sample */
     VF_LOOKUP_BILINEAR, /* interpolate between entries (1D for point, 2D for preint1) */
+    VF_LOOKUP_TRILINEAR, /* preint2 only: interpolate between the 8 entries around a sample triple in the 3D table
+                          * (a last slab of one slice interpolates its 2D entries bilinearly) */
     VF_LOOKUP_COUNT
 } vf_lookup_t;
 
@@ -151,13 +156,18 @@ typedef struct vf_params {
     bool lighting;
     uint32_t normal_bits;       /* bits of a normal code, 8, 10, 12, 14 (14) or 16: 2^(B/2) - 1 levels a side of
                                  * the octahedron (section 7) */
-    vf_lookup_t shade_lookup;   /* a sample's shade: its nearest voxel's, or its four voxels' interpolated
-                                 * (bilinear, the default) */
+    vf_lookup_t shade_lookup;   /* a sample's shade: its nearest voxel's (nearest, the default), or its four
+                                 * voxels' interpolated (bilinear: a little closer to the truth, at more cost) */
     /* Precision of the core's own arithmetic, for studies of how many bits each stage needs (docs/algorithm.md,
      * section 6). The defaults are the full precision; the double reference ignores these. */
     uint32_t sample_bits;       /* 0: samples exact; 4..16: rounded to that many fraction bits before lookup */
     uint32_t intermediate_bits; /* 16: Q1.15 accumulation; 8 or 12: rounded to that many bits after each slab */
     uint32_t warp_bits;         /* 16: Q0.16 warp weights; 4..15: fractions rounded to that many bits */
+    /* preint2 (docs/algorithm.md, section 8): entries a side of the 3D table, VF_MIN_TABLE2..VF_MAX_TABLE2 (64).
+     * The table takes table2_size^3 entries of four values (16 or 8 bits, as table_bits: 10 and 12 bits are kept
+     * in 16), with lighting three times that; it is built from first-order pieces kept in Q.30 (16 bytes an entry
+     * of the table_size^2 2D table, twice that with lighting). Other modes ignore it. */
+    uint32_t table2_size;
 } vf_params_t;
 
 void vf_params_default(vf_params_t *params);
@@ -261,6 +271,8 @@ typedef struct vf_memory {
     size_t normals;      /* lighting: normal codes and gradient magnitudes, per principal axis; the shade table */
     size_t intermediate; /* the intermediate image at its largest */
     size_t total;        /* arena bytes in use, alignment included */
+    size_t order2;       /* preint2: the 3D table (and with lighting its front- and back-weighted values) and the
+                          * Q.30 pieces it is built from; 0 in the other modes */
 } vf_memory_t;
 
 /* Arena bytes that vf_renderer_create reserves for this volume and these parameters (everything but the run
@@ -350,6 +362,17 @@ vf_status_t vf_table_preint(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf
  * vf_table_scratch_bytes covers it. */
 vf_status_t vf_table_preint_lit(const vf_tf_t *tf, uint32_t n, uint32_t slab_q16, vf_builder_t builder,
                                 vf_arena_t *scratch, uint16_t *out, uint16_t *lit_out);
+
+/* The order-2 table on its own (docs/algorithm.md, section 8) for a slab of 2 slab_q16 (slab_q16 is the distance
+ * between slices, d): n2^3 entries of Q1.15 r, g, b, a indexed [(front * n2 + middle) * n2 + back], built from the
+ * pieces of the n-entry 2D table. lit_out (NULL, or n2^3 * 8 values, the same indices): the entry's front- and
+ * back-weighted values W_f r, g, b, S_f then W_b r, g, b, S_b for lighting (section 8). In parts for threads: part
+ * (0 .. parts - 1) writes its share of the entries and no other, each part with its own scratch (the pieces are
+ * built by every part); all parts give the whole table, to the bit. VF_ERR_UNSUPPORTED in builds without
+ * VF_ORDER2 (or, for lit_out, without VF_LIT_TABLES). */
+size_t vf_table2_scratch_bytes(uint32_t n, bool lit);
+vf_status_t vf_table_order2(const vf_tf_t *tf, uint32_t n, uint32_t n2, uint32_t slab_q16, uint32_t part,
+                            uint32_t parts, vf_arena_t *scratch, uint16_t *out, uint16_t *lit_out);
 
 #ifdef __cplusplus
 }

@@ -24,6 +24,10 @@ void vfi_arena_fail_after(vf_arena_t *arena, uint32_t count);
 const uint16_t *vfi_renderer_intermediate(const vf_renderer_t *renderer);
 const uint16_t *vfi_renderer_point_table(const vf_renderer_t *renderer);
 const uint16_t *vfi_renderer_preint_table(const vf_renderer_t *renderer);
+/* preint2's 3D table (Q1.15 r, g, b, a, [(front * N2 + middle) * N2 + back]) and, for lit frames, its eight front-
+ * and back-weighted values an entry; NULL as above. (vfi_renderer_preint_table is its 2D table, the last slab's.) */
+const uint16_t *vfi_renderer_order2_table(const vf_renderer_t *renderer);
+const uint16_t *vfi_renderer_order2_lit_table(const vf_renderer_t *renderer);
 
 /* Composite with the general loops alone (true), never the plain ones: the same pixels, to the bit, which tests
  * check; the plain loops exist for speed. */

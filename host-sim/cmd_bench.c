@@ -425,7 +425,7 @@ static int matrix_variants(const vf_params_t *scene_params, variant_t *v)
     base.correction = VF_CORRECTION_REBUILD;
     base.buffer = VF_BUFFER_SLICE;
     v[count++].params = base;
-    for (int lookup = 0; lookup < VF_LOOKUP_COUNT; lookup++)
+    for (int lookup = 0; lookup <= VF_LOOKUP_BILINEAR; lookup++) /* preint1's lookups (trilinear: preint2's) */
         for (int correction = 0; correction < VF_CORRECTION_COUNT; correction++)
             for (int buffer = 0; buffer < VF_BUFFER_COUNT; buffer++) {
                 vf_params_t q = base;

@@ -87,7 +87,7 @@ static void sweep_bits(sweep_ctx_t *c, int scene)
 static void sweep_table_size(sweep_ctx_t *c, int scene, int full)
 {
     const unsigned sizes[] = {64, 128, 256, 512, 1024};
-    for (int lookup = 0; lookup < VF_LOOKUP_COUNT; lookup++)
+    for (int lookup = 0; lookup <= VF_LOOKUP_BILINEAR; lookup++) /* trilinear: preint2's */
         for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) {
             if (!full && sizes[i] == 1024)
                 continue; /* the 1024^2 reference table alone takes longer than the quick study may */
@@ -98,10 +98,10 @@ static void sweep_table_size(sweep_ctx_t *c, int scene, int full)
         }
 }
 
-/* Every mode (the study picks up new ones without a change), and each correction for the pre-integrated one. */
+/* Every mode the study ranks (STUDY_MODES), and each correction for the pre-integrated one. */
 static void sweep_orders(sweep_ctx_t *c, int scene)
 {
-    for (int mode = 0; mode < VF_MODE_COUNT; mode++) {
+    for (int mode = 0; mode < STUDY_MODES; mode++) {
         vf_params_t p = study_default_params();
         p.mode = (vf_mode_t)mode;
         run(c, scene, &p, "order", vf_mode_name(p.mode));
@@ -125,7 +125,7 @@ static void sweep_rays(sweep_ctx_t *c, int scene, int quick)
     for (size_t n = 0; n < 2; n++)
         for (int partial = 0; partial < 2; partial++)
             for (size_t k = 0; k < sizeof rays / sizeof *rays; k++)
-                for (int mode = 0; mode < VF_MODE_COUNT; mode++) {
+                for (int mode = 0; mode < STUDY_MODES; mode++) {
                     const int claim = sizes[n] == STUDY_CLAIM_TABLE && partial && rays[k] == STUDY_CLAIM_RAYS;
                     if (quick && !claim)
                         continue;

@@ -19,6 +19,7 @@
 static const char usage[] =
     "usage: volfix-sim tables [--preset NAME | --tf FILE] [--size N] [--slab D] [--bits 8|16] [-o TABLE.png]\n"
     "                         [--json] [--repeat R] [--lit]\n"
+    "       volfix-sim tables --order 2 ...   the order-2 (preint2) table: see volfix-sim tables --order 2 --help\n"
     "Build the pre-integrated table of a transfer function with the core's incremental O(N^2) builder (Lum et\n"
     "al. 2004) and with its brute-force O(N^3) oracle; print the build time of each (best of R runs) and the\n"
     "largest and mean difference from the double-precision reference builder, in LSB of the table format.\n\n"
@@ -112,6 +113,21 @@ static vfp_status_t draw(const char *path, const uint16_t *t, uint32_t n, char *
 
 int sim_cmd_tables(int argc, char **argv)
 {
+    /* --order 2: the order-2 table, its own command (cmd_tables2.c), given the other arguments; --order 1: this */
+    for (int i = 0; i + 1 < argc; i++)
+        if (strcmp(argv[i], "--order") == 0) {
+            if (strcmp(argv[i + 1], "1") != 0 && strcmp(argv[i + 1], "2") != 0) {
+                fprintf(stderr, "volfix-sim tables: --order %s: expected 1 or 2\n", argv[i + 1]);
+                return VFP_EXIT_ERR;
+            }
+            const int order2 = argv[i + 1][0] == '2';
+            for (int k = i; k + 2 < argc; k++)
+                argv[k] = argv[k + 2];
+            argc -= 2;
+            if (order2)
+                return sim_cmd_tables_order2(argc, argv);
+            break;
+        }
     const char *preset = NULL, *tf_file = NULL, *out = NULL;
     long n = 256, bits = 16, repeat = 5;
     double slab = 1.0;
@@ -198,7 +214,7 @@ int sim_cmd_tables(int argc, char **argv)
     }
     vf_arena_t arena;
     vf_arena_init(&arena, scratch, scratch_bytes);
-    vf_status_t s1, s2, s3 = VF_OK, s4 = VF_OK;
+    vf_status_t s1 = VF_OK, s2 = VF_OK, s3 = VF_OK, s4 = VF_OK; /* build_ms runs at least once */
     const int slow_repeat = repeat < 3 ? (int)repeat : 3;
     double fast_ms = build_ms(&core_tf, (uint32_t)n, slab_q16, VF_BUILDER_INCREMENTAL, (int)repeat, &arena, fast,
                               NULL, &s1);

@@ -13,6 +13,7 @@ int sim_cmd_render(int argc, char **argv);
 int sim_cmd_compare(int argc, char **argv);
 int sim_cmd_bench(int argc, char **argv);
 int sim_cmd_tables(int argc, char **argv);
+int sim_cmd_tables_order2(int argc, char **argv); /* volfix-sim tables --order 2 (cmd_tables2.c) */
 int sim_cmd_ray(int argc, char **argv);
 int sim_cmd_study(int argc, char **argv);
 int sim_cmd_diff(int argc, char **argv);

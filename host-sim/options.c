@@ -8,8 +8,9 @@
 const char sim_scene_help[] =
     "  --preset NAME        built-in transfer function: ramp (default), sharp, ct-bone, ct-skin-bone, mr-brain\n"
     "  --tf FILE            transfer function file (see README: 'scalar r g b a' per line)\n"
-    "  --mode MODE          point (order 0), preint1 (order 1, pre-integrated; default) or preclass\n"
-    "                       (order 0 with voxels classified before interpolation, as VolPack)\n"
+    "  --mode MODE          point (order 0), preint1 (order 1, pre-integrated; default), preclass\n"
+    "                       (order 0 with voxels classified before interpolation, as VolPack) or preint2\n"
+    "                       (order 2: slabs of two slices along the quadratic through three samples)\n"
     "  --view AZ,EL[,ROLL]  view angles in degrees (default 30,20), or a named view in the patient frame:\n"
     "                       anterior, posterior, left, right, superior or inferior (docs/formats.md)\n"
     "  --zoom Z             1 fits the volume's bounding sphere in the image (default 1)\n"
@@ -22,7 +23,8 @@ const char sim_scene_help[] =
     "  --downsample N       average N x N x N blocks first (the viewer's preview while a knob turns)\n"
     "  --table-size N       transfer-function table entries, 2..1024 (default 256)\n"
     "  --table-bits B       16 (default) or 8 bits per table value (half the memory)\n"
-    "  --lookup L           nearest (default) or bilinear table lookup\n"
+    "  --lookup L           nearest (default) or bilinear table lookup; preint2: nearest or trilinear\n"
+    "  --table2-size N      preint2's 3D table, N^3 entries, N 16..128 (default 64)\n"
     "  --correction C       rebuild (default: tables for each view's slab length) or lut (tables built once,\n"
     "                       opacity and colour corrected through a lookup on opacity: with nearest lookup\n"
     "                       in a 16-bit table of up to 512 entries, not preclass, each view into a second\n"
@@ -65,6 +67,26 @@ static int parse_doubles(const char *text, double *out, int min, int max)
         p = end + 1;
     }
     return n >= min && *p ? n : -1;
+}
+
+vfp_status_t sim_check_order2(const vf_params_t *p)
+{
+    const bool order2 = p->mode == VF_MODE_PREINT2;
+    if (order2 && p->lookup == VF_LOOKUP_BILINEAR) {
+        fprintf(stderr, "volfix-sim: --lookup bilinear: preint2 looks its 3D table up nearest or trilinear\n");
+        return VFP_ERR;
+    }
+    if (!order2 && p->lookup == VF_LOOKUP_TRILINEAR) {
+        fprintf(stderr, "volfix-sim: --lookup trilinear: only preint2 has a 3D table (--mode preint2); the other "
+                        "modes take nearest or bilinear\n");
+        return VFP_ERR;
+    }
+    if (order2 && p->partial_slabs) {
+        fprintf(stderr, "volfix-sim: --partial-slabs: preint2 does not shorten its slabs at the side faces "
+                        "(docs/algorithm.md, section 8)\n");
+        return VFP_ERR;
+    }
+    return VFP_OK;
 }
 
 vfp_status_t sim_parse_mode(const char *text, vf_mode_t *mode)
@@ -120,7 +142,7 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
             o->load.downsample = (int)n;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--mode") == 0) {
             if (sim_parse_mode(v, &o->params.mode))
-                return bad(a, v, "point, preint1 or preclass");
+                return bad(a, v, "point, preint1, preclass or preint2");
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--table-bits") == 0) {
             if (v && strcmp(v, "8") == 0)
                 o->params.table_bits = 8;
@@ -133,8 +155,15 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
                 o->params.lookup = VF_LOOKUP_NEAREST;
             else if (v && strcmp(v, "bilinear") == 0)
                 o->params.lookup = VF_LOOKUP_BILINEAR;
+            else if (v && strcmp(v, "trilinear") == 0)
+                o->params.lookup = VF_LOOKUP_TRILINEAR;
             else
-                return bad(a, v, "nearest or bilinear");
+                return bad(a, v, "nearest, bilinear or (preint2) trilinear");
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--table2-size") == 0) {
+            double n;
+            if (!v || parse_doubles(v, &n, 1, 1) < 0 || n != (int)n || n < VF_MIN_TABLE2 || n > VF_MAX_TABLE2)
+                return bad(a, v, "an integer from 16 to 128");
+            o->params.table2_size = (uint32_t)n;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--correction") == 0) {
             if (v && strcmp(v, "rebuild") == 0)
                 o->params.correction = VF_CORRECTION_REBUILD;
@@ -302,5 +331,5 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
         fprintf(stderr, "volfix-sim: give --preset or --tf, not both\n");
         return VFP_ERR;
     }
-    return VFP_OK;
+    return sim_check_order2(&o->params);
 }

@@ -53,8 +53,11 @@ enum {
  * VFP_ERR after printing a one-line error to stderr. */
 vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, const char *usage);
 
-/* "point", "preint1" or "preclass". Returns VFP_OK, or VFP_ERR for another text. */
+/* "point", "preint1", "preclass" or "preint2". Returns VFP_OK, or VFP_ERR for another text. */
 vfp_status_t sim_parse_mode(const char *text, vf_mode_t *mode);
+
+/* What preint2 takes and only it takes (its lookups, no partial slabs): VFP_OK, or VFP_ERR after a one-line error. */
+vfp_status_t sim_check_order2(const vf_params_t *params);
 
 /* The scene options' help text, for the commands' usage. */
 extern const char sim_scene_help[];

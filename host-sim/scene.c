@@ -228,13 +228,17 @@ vfp_status_t sim_render_reference(const sim_scene_t *s, const vf_factor_t *core_
     if (double_frame_begin(s, "the reference", &in, &rgb, img, err, errlen))
         return VFP_ERR;
     ref_params_t params = {0};
-    params.mode = s->params.mode == VF_MODE_POINT ? REF_MODE_POINT
+    params.mode = s->params.mode == VF_MODE_POINT     ? REF_MODE_POINT
                   : s->params.mode == VF_MODE_PRECLASS ? REF_MODE_PRECLASS
+                  : s->params.mode == VF_MODE_PREINT2  ? REF_MODE_PREINT2
                                                        : REF_MODE_PREINT1;
+    params.table2_size = (int)s->params.table2_size;
     params.table_size = (int)s->params.table_size;
     for (int c = 0; c < 3; c++)
         params.background[c] = in.background[c];
-    params.lookup = s->params.lookup == VF_LOOKUP_BILINEAR ? REF_LOOKUP_BILINEAR : REF_LOOKUP_NEAREST;
+    params.lookup = s->params.lookup == VF_LOOKUP_BILINEAR    ? REF_LOOKUP_BILINEAR
+                    : s->params.lookup == VF_LOOKUP_TRILINEAR ? REF_LOOKUP_TRILINEAR
+                                                              : REF_LOOKUP_NEAREST;
     params.table_bits = (int)s->params.table_bits;
     params.correction = s->params.correction == VF_CORRECTION_LUT ? REF_CORRECTION_LUT : REF_CORRECTION_REBUILD;
     params.partial_slabs = s->params.partial_slabs;
@@ -296,6 +300,8 @@ void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)
         p->correction != VF_CORRECTION_REBUILD || p->buffer != VF_BUFFER_SLICE)
         snprintf(options, sizeof options, " (table %u x %u bits, %s, %s, %s buffer)", p->table_size, p->table_bits,
                  vf_lookup_name(p->lookup), vf_correction_name(p->correction), vf_buffer_name(p->buffer));
+    if (p->mode == VF_MODE_PREINT2) /* its 3D table's size, always: the study has not settled its default */
+        snprintf(options + strlen(options), sizeof options - strlen(options), " (table2 %u^3)", p->table2_size);
     char rays[32] = "";
     if (s->params.rays > 1)
         snprintf(rays, sizeof rays, " rays %u", s->params.rays);

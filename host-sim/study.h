@@ -20,6 +20,11 @@
 #define STUDY_CLAIM_RAYS 16u
 #define STUDY_CLAIM_TABLE 1024u
 
+/* The modes the study ranks: vf_mode_t's first three, point, preint1 and preclass. preint2 renders in every
+ * command but is not in the study's sweeps: it refuses partial slabs, which the rays sweep and its strips take, and
+ * its ranking needs a smooth truth beside the trilinear one (docs/algorithm.md, section 8). */
+#define STUDY_MODES 3
+
 /* One scene: volume, transfer function, view and size; its truth image is rendered once. */
 typedef struct study_scene {
     char label[64];        /* "ml41-sharp" */

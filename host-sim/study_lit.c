@@ -151,7 +151,7 @@ static vfp_status_t stages(study_t *st, int scene, char *err, size_t errlen)
         status = knob_run(st, scene, "lit_table_bits", lits[k], exact, err, errlen);
     /* the shade lookup against the truth (the core's reference for each is the exact-codes one of its mode) */
     for (int m = 0; status == VFP_OK && !quick && m < 2; m++)
-        for (int lookup = 0; status == VFP_OK && lookup < VF_LOOKUP_COUNT; lookup++) {
+        for (int lookup = 0; status == VFP_OK && lookup <= VF_LOOKUP_BILINEAR; lookup++) { /* nearest, bilinear */
             vf_params_t p = def;
             p.mode = m ? VF_MODE_PREINT1 : VF_MODE_POINT;
             p.shade_lookup = (vf_lookup_t)lookup;

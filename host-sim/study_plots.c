@@ -117,7 +117,7 @@ static vfp_status_t plot_orders(const study_t *st, char *err, size_t errlen)
     if (open_plot(st, "orders", &d, &g, err, errlen))
         return VFP_ERR;
     fprintf(d, "scene");
-    for (int m = 0; m < VF_MODE_COUNT; m++)
+    for (int m = 0; m < STUDY_MODES; m++)
         fprintf(d, " %s", vf_mode_name((vf_mode_t)m));
     fprintf(d, "\n");
     int which[STUDY_MAX_SCENES], n = study_scenes_with(st, "order", which, STUDY_MAX_SCENES);
@@ -125,7 +125,7 @@ static vfp_status_t plot_orders(const study_t *st, char *err, size_t errlen)
         if (strncmp(st->scenes[which[i]].label, "ml41-peaks-", 11) == 0)
             continue; /* the peak-width sweep has its own plot */
         fprintf(d, "%s", st->scenes[which[i]].label);
-        for (int m = 0; m < VF_MODE_COUNT; m++) {
+        for (int m = 0; m < STUDY_MODES; m++) {
             const study_run_t *r = study_find(st, st->scenes[which[i]].label, "order", vf_mode_name((vf_mode_t)m));
             fprintf(d, " %.3f", r ? r->vs_truth.psnr_db : 0.0);
         }
@@ -137,7 +137,7 @@ static vfp_status_t plot_orders(const study_t *st, char *err, size_t errlen)
                "set style data histogram\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\n"
                "set grid ytics\nset ylabel 'PSNR against the truth (dB)'\nset key top left\nset xtics rotate by -20\n"
                "set yrange [0:*]\nplot ");
-    for (int m = 0; n && m < VF_MODE_COUNT; m++)
+    for (int m = 0; n && m < STUDY_MODES; m++)
         fprintf(g, "%s'orders.dat' using %d:xtic(1) title columnheader", m ? ", " : "", m + 2);
     fprintf(g, "%s\n", n ? "" : EMPTY_PLOT);
     fclose(d);

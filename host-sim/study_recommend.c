@@ -266,13 +266,13 @@ void study_recommend(FILE *f, const study_t *st)
                "levels of the reference (one stage reduced at a time): table entries %s bits, samples %s fraction "
                "bits (32 = exact), intermediate image %s bits, warp weights %s fraction bits.\n\n", t, s, i, w);
 
-    const study_run_t *rows[VF_MODE_COUNT];
+    const study_run_t *rows[STUDY_MODES];
     fprintf(f, "Orders on Marschner-Lobb, PSNR against the truth (sharp / smooth):");
-    for (int m = 0; m < VF_MODE_COUNT; m++) {
+    for (int m = 0; m < STUDY_MODES; m++) {
         rows[m] = study_find(st, "ml41-sharp", "order", vf_mode_name((vf_mode_t)m));
         const study_run_t *smooth = study_find(st, "ml41-ramp", "order", vf_mode_name((vf_mode_t)m));
         fprintf(f, " %s %.1f / %.1f dB%s", vf_mode_name((vf_mode_t)m), rows[m] ? rows[m]->vs_truth.psnr_db : 0,
-                smooth ? smooth->vs_truth.psnr_db : 0, m + 1 < VF_MODE_COUNT ? ";" : ".\n\n");
+                smooth ? smooth->vs_truth.psnr_db : 0, m + 1 < STUDY_MODES ? ";" : ".\n\n");
     }
     const study_run_t *n256 = study_find(st, "ml41-sharp", "table_size_nearest", "256");
     const study_run_t *b256 = study_find(st, "ml41-sharp", "table_size_bilinear", "256");

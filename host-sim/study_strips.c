@@ -26,7 +26,7 @@ vfp_status_t study_write_strip(study_t *st, int scene, const vf_params_t *base, 
                                size_t namelen, char *err, size_t errlen)
 {
     const study_scene_t *sc = &st->scenes[scene];
-    const uint32_t w = sc->size, cols = VF_MODE_COUNT + 1;
+    const uint32_t w = sc->size, cols = STUDY_MODES + 1;
     const size_t pixels = (size_t)w * w;
     const uint8_t *truth = study_truth(st, scene, err, errlen);
     uint8_t *strip = calloc((size_t)cols * w * 2 * w, 3), *img = malloc(pixels * 3);
@@ -38,7 +38,7 @@ vfp_status_t study_write_strip(study_t *st, int scene, const vf_params_t *base, 
         return VFP_ERR;
     }
     for (uint32_t col = 0; col < cols; col++) {
-        if (col < VF_MODE_COUNT) {
+        if (col < STUDY_MODES) {
             vf_params_t p = study_default_params();
             if (base) {
                 p.rays = base->rays;
@@ -65,7 +65,7 @@ vfp_status_t study_write_strip(study_t *st, int scene, const vf_params_t *base, 
                 for (int c = 0; c < 3; c++) {
                     top[c] = a[c];
                     int diff = abs((int)a[c] - (int)t[c]) * 4;
-                    bottom[c] = (uint8_t)(col < VF_MODE_COUNT ? (diff > 255 ? 255 : diff) : 0);
+                    bottom[c] = (uint8_t)(col < STUDY_MODES ? (diff > 255 ? 255 : diff) : 0);
                 }
             }
     }

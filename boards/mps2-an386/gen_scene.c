@@ -124,10 +124,11 @@ static int write_header(const char *path, const sim_scene_t *s, uint32_t band_ro
                "    .mode = %d, .table_size = %u, .table_bits = %u, .lookup = %d, .correction = %d,\n"
                "    .buffer = %d, .rays = %u, .partial_slabs = %d, .background = {%u, %u, %u},\n"
                "    .sample_bits = %u, .intermediate_bits = %u, .warp_bits = %u,\n"
-               "    .lighting = %d, .normal_bits = %u, .shade_lookup = %d,\n};\n",
+               "    .lighting = %d, .normal_bits = %u, .shade_lookup = %d, .table2_size = %u,\n};\n",
             (int)p->mode, p->table_size, p->table_bits, (int)p->lookup, (int)p->correction, (int)p->buffer,
             p->rays, (int)p->partial_slabs, p->background[0], p->background[1], p->background[2], p->sample_bits,
-            p->intermediate_bits, p->warp_bits, (int)p->lighting, p->normal_bits, (int)p->shade_lookup);
+            p->intermediate_bits, p->warp_bits, (int)p->lighting, p->normal_bits, (int)p->shade_lookup,
+            p->table2_size);
     if (fclose(f) != 0) {
         snprintf(err, errlen, "%s: write failed", path);
         return 2;

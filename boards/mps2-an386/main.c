@@ -99,7 +99,10 @@ int main(void)
     report("", m.runs, ", classify ");
     report("", m.classify, ", tables ");
     report("", m.tables, ", intermediate ");
-    report("", m.intermediate, ")\n");
+    report("", m.intermediate, "");
+    if (m.order2) /* preint2's 3D table and its pieces */
+        report(", order2 ", m.order2, "");
+    sh_puts(")\n");
     report("band scratch: ", vf_renderer_band_scratch_bytes(r, SCENE_BAND_ROWS), " bytes for ");
     report("", SCENE_BAND_ROWS, " rows (buffer slices and skip links; ");
     report("", vf_renderer_band_scratch_bytes(r, int_h), " for all ");

@@ -19,6 +19,7 @@
  *   ref_render.c   sections 4, 4b, 4c and 5: compositing into the intermediate image, the warp, the whole frame
  *   ref_normals.c  section 7: gradients, normal codes and 8-bit magnitudes of the voxels as stored
  *   ref_shade.c    section 7: lights, the shade table, a voxel's shade, lit segments
+ *   ref_order2.c   section 8: order 2 (preint2), its table and its frames
  * Every function that returns int (but ref_table_index) returns 0, or -1 on an argument outside the spec's ranges
  * or when out of memory.
  */
@@ -42,10 +43,10 @@ typedef struct ref_tf_point {
 } ref_tf_point_t;
 
 /* point and preint1: section 4; preclass (voxels classified first, their entries interpolated): section 4b. */
-typedef enum ref_mode { REF_MODE_POINT, REF_MODE_PREINT1, REF_MODE_PRECLASS } ref_mode_t;
+typedef enum ref_mode { REF_MODE_POINT, REF_MODE_PREINT1, REF_MODE_PRECLASS, REF_MODE_PREINT2 } ref_mode_t;
 
 /* Section 4b. Lookup of a sample in a table: the nearest entry (section 2) or bilinear between entries. */
-typedef enum ref_lookup { REF_LOOKUP_NEAREST = 0, REF_LOOKUP_BILINEAR } ref_lookup_t;
+typedef enum ref_lookup { REF_LOOKUP_NEAREST = 0, REF_LOOKUP_BILINEAR, REF_LOOKUP_TRILINEAR } ref_lookup_t;
 
 /* Section 4b. Slab length: tables built for the view's d, or built for d0 = 1 and every segment corrected. */
 typedef enum ref_correction { REF_CORRECTION_REBUILD = 0, REF_CORRECTION_LUT } ref_correction_t;
@@ -79,6 +80,9 @@ typedef struct ref_params {
     /* Section 7. NULL: unlit (sections 1 to 6). Else every segment is lit as section 7 says; with partial slabs
      * ref_render refuses it (-1), as the core does. */
     const ref_lighting_t *lighting;
+    /* Section 8. preint2's 3D table, N2 entries a side (REF_MIN_TABLE2..REF_MAX_TABLE2; 0 means 64); the lookup is
+     * nearest or trilinear (the last slab of an odd count then bilinear); partial slabs are not part of preint2. */
+    int table2_size;
 } ref_params_t;
 
 typedef struct ref_view {
@@ -116,6 +120,9 @@ typedef struct ref_factor {
 #define REF_LUT_KNOTS 1024                       /* lut correction: knots a_k = k / 1024, k = 0..1024 */
 #define REF_LUT_D0 1.0                           /* lut correction: the slab length the tables are built for */
 #define REF_MAX_RAYS 16                          /* rays per voxel column: 1, 2, 4, 8 or 16 */
+#define REF_MIN_TABLE2 16                        /* order 2: entries a side of the 3D table */
+#define REF_MAX_TABLE2 128
+#define REF_ORDER2_PIECES 16                     /* order 2: pieces K of a slab's curve */
 
 /* ---- ref_window.c -------------------------------------------------------------------------------------- */
 
@@ -335,5 +342,56 @@ int ref_warp_rays(const ref_factor_t *f, int rays, const double *inter, const do
  * table bits, composite, warp. rgb: out_w * out_h * 3 in [0, 1]. factor_out may be NULL. */
 int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const ref_params_t *p,
                const ref_view_t *view, int out_w, int out_h, double *rgb, ref_factor_t *factor_out);
+
+/* ---- ref_order2.c ------------------------------------------------------------------------------------- */
+
+/* Section 8: the order-2 table for slabs of length 2d, N2 entries a side, built from the pieces of the N-entry
+ * pre-integrated table for length 2d / K (ref_preint_table, brute force): out[4 ((f N2 + m) N2 + b) + 0..3] = a, r,
+ * g, b, entry (f, m, b) the K pieces along its quadratic, composited front to back in double. */
+int ref_order2_table(const ref_tf_point_t *tf, int npoints, int N, int N2, double d, double *out);
+
+/* The K + 1 ends of entry (f, m, b)'s pieces, entries of the N-entry table (section 8's integers). */
+void ref_order2_ends(int N, int N2, int f, int m, int b, int end[REF_ORDER2_PIECES + 1]);
+
+/* One entry of the order-2 table (N2^3 x 4) for a front, middle and back sample: nearest, T2[idx2(sf)][idx2(sm)]
+ * [idx2(sb)]; trilinear, the eight entries around them weighted as section 4b weights four. out: a, r, g, b. */
+void ref_lookup_order2(const double *table2, int N2, ref_lookup_t lookup, double sf, double sm, double sb,
+                       double out[4]);
+
+/* Section 8's lighting values of the order-2 table for slabs of 2d, from the pieces of section 7's front-weighted
+ * table (ref_lit_table) for 2d / K: out[8 ((f N2 + m) N2 + b) + 0..7] = S_f', W_f r, g, b, S_b', W_b r, g, b (the
+ * layout of two entries of the plain table, the specular weight where it has a). */
+int ref_order2_lit_table(const ref_tf_point_t *tf, int npoints, int N, int N2, double d, double *out);
+
+/* Composite preint2's slabs (section 8) into the R-ray intermediate image (as ref_composite_rays): table2 the order-2
+ * table (N2), table the 2D table (N) for the last slab of an odd count, both as given (built for the slab length,
+ * table bits applied); lut NULL or the correction of every segment. Lit when lighting is not NULL: lit2 the
+ * order-2 table's lighting values (ref_order2_lit_table) and lit the 2D table's front-weighted ones (ref_lit_table),
+ * both as given. */
+int ref_composite_order2(const ref_volume_t *vol, const ref_factor_t *f, ref_lookup_t lookup, int N,
+                         const double *table, int N2, const double *table2, const ref_lut_t *lut, int rays,
+                         const ref_lighting_t *lighting, const double *lit, const double *lit2, double *inter);
+
+/* What ref_render does for preint2: the tables for d (rebuild: the 2D table for d, the 3D one for slabs of 2d) or
+ * d0 (lut, corrected for rho = d / d0), table bits, composite, warp. */
+int ref_render_order2(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const ref_params_t *p,
+                      const ref_factor_t *f, double *rgb);
+
+/* ---- ref_render.c's helpers, for ref_order2.c -------------------------------------------------------------- */
+
+/* The volume's scalars in standard order (malloc'd; NULL when out of memory): std[(k nj + j) ni + i]. */
+uint8_t *ref_standard_slices(const ref_volume_t *vol, const ref_factor_t *f);
+/* The bilinear sample of an ni-wide slice at an inside position (x, y), exact on the 2^-16 grid. */
+double ref_slice_sample(const uint8_t *slice, int ni, double x, double y);
+/* Front to back: pix R, G, B, A; seg a, r, g, b. */
+void ref_composite_segment(double *pix, const double *seg);
+/* A frame's shading (section 7, as the lit modes have it): its lights, the voxels' codes and magnitudes, the shade
+ * of every code; the shades of standard slice k's voxels into slot which (0..2); a sample's shade in a slot's slice
+ * at the inside position (x, y). ref_shading_new returns NULL on bad lighting or when out of memory. */
+typedef struct ref_shading ref_shading_t;
+ref_shading_t *ref_shading_new(const ref_volume_t *vol, const ref_factor_t *f, const ref_lighting_t *lighting);
+void ref_shading_free(ref_shading_t *shading);
+void ref_shading_slice(ref_shading_t *shading, const ref_volume_t *vol, const ref_factor_t *f, int k, int which);
+ref_shade_t ref_shading_sample(const ref_shading_t *shading, int which, int ni, double x, double y);
 
 #endif /* REF_H */

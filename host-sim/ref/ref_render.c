@@ -66,8 +66,8 @@ static void classify_slice(const uint8_t *slice, size_t count, int N, const doub
 }
 
 /* Section 7 for one frame: the lights, every voxel's code (NULL with exact normals) and 8-bit magnitude in
- * object order, the shade of every code, and the shades of the voxels of two slices (the front and back of a
- * slab; order 0 uses the first). */
+ * object order, the shade of every code, and the shades of the voxels of three slices (the front and back of a
+ * slab; order 0 uses the first; order 2's slab, in ref_order2.c, all three). */
 typedef struct shading {
     const ref_lighting_t *l;
     ref_lights_t lights;
@@ -75,7 +75,7 @@ typedef struct shading {
     int32_t *codes;
     uint8_t *magnitudes;
     double *table;         /* L_d, L_s of each code, L^2 + 1 codes */
-    ref_shade_t *slice[2]; /* n_i n_j shades each */
+    ref_shade_t *slice[3]; /* n_i n_j shades each */
 } shading_t;
 
 static void shading_free(shading_t *sh)
@@ -85,6 +85,7 @@ static void shading_free(shading_t *sh)
     free(sh->table);
     free(sh->slice[0]);
     free(sh->slice[1]);
+    free(sh->slice[2]);
 }
 
 static int shading_init(shading_t *sh, const ref_volume_t *vol, const ref_factor_t *f, const ref_lighting_t *l)
@@ -104,7 +105,9 @@ static int shading_init(shading_t *sh, const ref_volume_t *vol, const ref_factor
     sh->table = l->exact_normals ? NULL : malloc(sizeof(double) * 2 * codes);
     sh->slice[0] = malloc(sizeof(ref_shade_t) * slice);
     sh->slice[1] = malloc(sizeof(ref_shade_t) * slice);
+    sh->slice[2] = malloc(sizeof(ref_shade_t) * slice);
     if (!sh->magnitudes || (!l->exact_normals && (!sh->codes || !sh->table)) || !sh->slice[0] || !sh->slice[1] ||
+        !sh->slice[2] ||
         ref_normals(vol, l->raw, l->raw_type, l->normal_bits, sh->codes, sh->magnitudes)) {
         shading_free(sh);
         return -1;
@@ -535,6 +538,17 @@ int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, c
                const ref_view_t *view, int out_w, int out_h, double *rgb, ref_factor_t *factor_out)
 {
     ref_factor_t f;
+    if (p && p->mode == REF_MODE_PREINT2) { /* section 8: ref_order2.c */
+        if (!vol || !vol->scalars || !rgb || ref_factor(vol, view, out_w, out_h, &f))
+            return -1;
+        if (p->slice_offsets_q16 && ref_factor_adopt_offsets(&f, p->slice_offsets_q16, p->slice_k_axis,
+                                                             p->slice_k_flip))
+            return -2;
+        int rc = ref_render_order2(vol, tf, npoints, p, &f, rgb);
+        if (rc == 0 && factor_out)
+            *factor_out = f;
+        return rc;
+    }
     int rays = p && p->rays == 0 ? 1 : p ? p->rays : 0, W, H;
     if (!vol || !vol->scalars || !p || !rgb || p->table_size < REF_MIN_TABLE || p->table_size > REF_MAX_TABLE ||
         !mode_valid(p->mode) || !lookup_valid(p->lookup) ||
@@ -589,4 +603,54 @@ int ref_render(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, c
     if (rc == 0 && factor_out)
         *factor_out = f;
     return rc;
+}
+
+/* ---- For ref_order2.c (ref.h): the helpers above by name. ---- */
+
+uint8_t *ref_standard_slices(const ref_volume_t *vol, const ref_factor_t *f)
+{
+    return standard_slices(vol, f);
+}
+
+double ref_slice_sample(const uint8_t *slice, int ni, double x, double y)
+{
+    return sample(slice, ni, x, y);
+}
+
+void ref_composite_segment(double *pix, const double *seg)
+{
+    composite(pix, seg);
+}
+
+/* ---- For ref_order2.c (ref.h): a frame's shading, as the lit modes above have it. ---- */
+
+struct ref_shading {
+    shading_t sh;
+};
+
+ref_shading_t *ref_shading_new(const ref_volume_t *vol, const ref_factor_t *f, const ref_lighting_t *lighting)
+{
+    ref_shading_t *s = malloc(sizeof *s);
+    if (s && shading_init(&s->sh, vol, f, lighting)) {
+        free(s);
+        s = NULL;
+    }
+    return s;
+}
+
+void ref_shading_free(ref_shading_t *s)
+{
+    if (s)
+        shading_free(&s->sh);
+    free(s);
+}
+
+void ref_shading_slice(ref_shading_t *s, const ref_volume_t *vol, const ref_factor_t *f, int k, int which)
+{
+    shade_slice(&s->sh, vol, f, k, which);
+}
+
+ref_shade_t ref_shading_sample(const ref_shading_t *s, int which, int ni, double x, double y)
+{
+    return sample_shade(&s->sh, which, ni, x, y);
 }

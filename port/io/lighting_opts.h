@@ -80,7 +80,8 @@ void vfp_lighting_args(const vf_params_t *params, const vf_lighting_t *lighting,
     "                       volume's steepest voxel), integers 0 <= LO < HI <= 255: 0 up to LO, 1 from HI\n" \
     "                       (default: none); applies with --shade none too\n" \
     "  --normal-bits B      bits of a voxel's normal code: 8, 10, 12, 14 (default) or 16\n" \
-    "  --shade-lookup L     a sample's shade: bilinear (default: its four voxels' interpolated) or nearest\n"
+    "  --shade-lookup L     a sample's shade: nearest (default: its nearest voxel's) or bilinear (its four\n" \
+    "                       voxels' interpolated: a little closer to the truth, and slower)\n"
 extern const char vfp_lighting_help[];
 
 #endif

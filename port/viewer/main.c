@@ -28,7 +28,7 @@ static const char usage[] =
     "                       mr-brain; the preset button cycles through them all\n"
     "  --tf FILE            start with a transfer-function file (the preset button cycles it and the presets)\n"
     "  --window LO,HI       data values the transfer function's 0..1 spans (default: from the data)\n"
-    "  --mode MODE          point, preint1 (default) or preclass; the mode button cycles them\n"
+    "  --mode MODE          point, preint1 (default), preclass or preint2; the mode button cycles them\n"
     "  --view AZ,EL[,ROLL]  first view in degrees (default 30,20), or anterior, posterior, left, right,\n"
     "                       superior or inferior (the patient frame); the reset button comes back to it\n"
     "  --zoom Z             first zoom, 1 fitting the volume (default 1)\n"
@@ -118,7 +118,7 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
             for (m = 0; m < VF_MODE_COUNT && !(v && !strcmp(v, vf_mode_name((vf_mode_t)m))); m++)
                 ;
             if (m == VF_MODE_COUNT)
-                return bad(a, v, "point, preint1 or preclass");
+                return bad(a, v, "point, preint1, preclass or preint2");
             o->mode = (vf_mode_t)m;
         } else if (!strcmp(a, "--view")) {
             int n = !v ? 0 : vfp_view_named(v, o->view) == VFP_OK ? 3 :
@@ -199,12 +199,12 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
         if (!n || snprintf(o->board_path, sizeof o->board_path, "%s/%s%s", VFP_BOARD_DIR, o->board, ext) >=
                       (int)sizeof o->board_path) {
             fprintf(stderr, "volfix: --board '%s': expected a board name or a path to a board file\n", o->board);
-            return 2;
+            return VFP_ERR;
         }
         if (access(o->board_path, R_OK) != 0) {
             fprintf(stderr, "volfix: --board %s: no board of that name in %s (a board file's path needs a slash: "
                     "./%s)\n", o->board, VFP_BOARD_DIR, o->board);
-            return 2;
+            return VFP_ERR;
         }
         o->board = o->board_path;
     }

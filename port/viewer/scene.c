@@ -22,6 +22,10 @@ vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, con
         vf_params_t params = scene->params;
         params.mode = c->mode;
         params.lighting = lit != 0;
+        /* preint2's 3D table takes about 22 ms to rebuild at 64^3 (docs/performance.md), too long to wait for at
+         * every turn of a knob: it is built once for d0 and corrected through the opacity lookup */
+        if (params.mode == VF_MODE_PREINT2)
+            params.correction = VF_CORRECTION_LUT;
         if (vfp_render_open(&vr->r, &params, &volume->core, scene->threads, err, errlen))
             return VFP_ERR;
         vr->open = 1;

@@ -1,8 +1,9 @@
 /*
  * small_config.c: one program built twice by small_config.sh, against the whole core and against the smallest
  * configuration of core/vf_config.h (the microcontroller's: no partial slabs, rays, table parts, view tables,
- * tables built as read or brute-force table builder). It prints, a line each, the status of creating a renderer
- * with more than one ray and with partial slabs and of building a table by brute force, and a hash of every frame
+ * tables built as read, brute-force table builder or order 2). It prints, a line each, the status of creating a
+ * renderer with more than one ray, with partial slabs and in preint2 and of building a table by brute force, and a
+ * hash of every frame
  * of a few scenes and turns with one ray and whole slabs; the script requires the small build to refuse the options
  * left out (VF_ERR_UNSUPPORTED) and to render every frame exactly as the whole core does.
  */
@@ -153,9 +154,14 @@ int main(void)
     p.partial_slabs = 1;
     printf("partial slabs: %s\n", status_name(render(&p, &views[0], &h)));
     printf("brute-force table: %s\n", status_name(oracle_table()));
+    vf_params_default(&p);
+    p.mode = VF_MODE_PREINT2;
+    p.table2_size = 32;
+    printf("preint2: %s\n", status_name(render(&p, &views[0], &h)));
 
-    for (int mode = 0; mode < VF_MODE_COUNT; mode++)
-        for (int lookup = 0; lookup < VF_LOOKUP_COUNT; lookup++)
+    /* the modes and lookups both builds have (preint2 and its trilinear lookup: above) */
+    for (int mode = 0; mode <= VF_MODE_PRECLASS; mode++)
+        for (int lookup = 0; lookup <= VF_LOOKUP_BILINEAR; lookup++)
             for (int correction = 0; correction < 2; correction++)
                 for (int v = 0; v < 3; v++) {
                     vf_params_default(&p);
@@ -167,7 +173,7 @@ int main(void)
                     printf("%s %s %s view %d: %s %016llx\n", vf_mode_name(p.mode), vf_lookup_name(p.lookup),
                            vf_correction_name(p.correction), v, vf_status_text(s), (unsigned long long)h);
                 }
-    for (int mode = 0; mode < VF_MODE_COUNT; mode++)
+    for (int mode = 0; mode <= VF_MODE_PRECLASS; mode++)
         for (int correction = 0; correction < 2; correction++)
             for (uint32_t bits = 8; bits <= 16; bits += 8)
                 turn((vf_mode_t)mode, correction ? VF_CORRECTION_LUT : VF_CORRECTION_REBUILD, bits);

@@ -1,7 +1,7 @@
 #!/bin/sh
 # The smallest configuration of core/vf_config.h, the microcontroller's (the Makefile's MCU_FEATURES, read from it):
-# tests/core/small_config.c built against it and against the whole core. The small core must refuse more than one ray, partial slabs and the
-# brute-force table builder with VF_ERR_UNSUPPORTED (which the whole core renders or builds), and render every
+# tests/core/small_config.c built against it and against the whole core. The small core must refuse more than one ray, partial slabs, the
+# brute-force table builder and preint2 with VF_ERR_UNSUPPORTED (which the whole core renders or builds), and render every
 # other frame of the program exactly as the whole core does (108 frames: every mode, lookup and correction, 3
 # views; and one renderer a mode, correction and table format through 6 views and a
 # new transfer function. The whole core builds its tables in 3 parts, the small one in vf_renderer_begin; with the
@@ -28,7 +28,7 @@ if ! build whole "" || ! build small "$small"; then
 fi
 
 line() { sed -n "s/^$2: //p" "$out/$1.txt"; }
-for option in "rays 2" "partial slabs" "brute-force table"; do
+for option in "rays 2" "partial slabs" "brute-force table" "preint2"; do
     whole=$(line whole "$option") small=$(line small "$option")
     if [ "$whole" = VF_OK ] && [ "$small" = VF_ERR_UNSUPPORTED ]; then
         echo "ok - small-config/$option: the whole core renders it, the small core says $small"

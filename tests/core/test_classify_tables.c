@@ -49,7 +49,7 @@ static uint16_t table1d[1024 * 4];
 
 static vfi_table_out_t q15_out(uint16_t *table)
 {
-    vfi_table_out_t out = {table, NULL, 0, NULL, NULL};
+    vfi_table_out_t out = {table, NULL, 0, NULL, NULL, NULL, NULL};
     return out;
 }
 
@@ -672,7 +672,7 @@ static void tables_8bit(void)
             spec_classify(&tf, n);
             uint32_t slab_q16 = 65536 + (uint32_t)t * 9000;
             double d = slab_q16 / 65536.0;
-            vfi_table_out_t u8 = {NULL, table2d_u8, 0, NULL, NULL};
+            vfi_table_out_t u8 = {NULL, table2d_u8, 0, NULL, NULL, NULL, NULL};
             vfi_preint_table_incremental(&fx.cls, slab_q16, &fx.scratch, u8);
             vfi_preint_table_incremental(&fx.cls, slab_q16, &fx.scratch, q15_out(table2d));
             for (uint32_t f = 0; f < n; f++)
@@ -689,7 +689,7 @@ static void tables_8bit(void)
                         CHECK(abs((int)table2d_u8[at] - (int)lround(table2d[at] * 255 / 32768.0)) <= 1);
                     }
                 }
-            vfi_point_table(&fx.cls, slab_q16, (vfi_table_out_t){NULL, table2d_u8, 0, NULL, NULL});
+            vfi_point_table(&fx.cls, slab_q16, (vfi_table_out_t){NULL, table2d_u8, 0, NULL, NULL, NULL, NULL});
             for (uint32_t i = 0; i < n; i++) {
                 double e[4];
                 spec_point(i, d, e);
@@ -724,10 +724,11 @@ static void tables_incremental_formats(void)
                     const uint32_t bits = format == 1 ? 10 : 12;
                     /* one level apart: 1 of 255, or 32768 / (2^bits - 1) rounded up in Q1.15 */
                     const int level = format == 0 ? 1 : (int)((32768 + (1u << bits) - 2) / ((1u << bits) - 1));
-                    vfi_table_out_t want = {NULL, oracle_u8, 0, NULL, NULL}, got = {NULL, table_u8, 0, NULL, NULL};
+                    vfi_table_out_t want = {NULL, oracle_u8, 0, NULL, NULL, NULL, NULL},
+                                    got = {NULL, table_u8, 0, NULL, NULL, NULL, NULL};
                     if (format > 0) {
-                        want = (vfi_table_out_t){oracle_grid, NULL, bits, NULL, NULL};
-                        got = (vfi_table_out_t){table_grid, NULL, bits, NULL, NULL};
+                        want = (vfi_table_out_t){oracle_grid, NULL, bits, NULL, NULL, NULL, NULL};
+                        got = (vfi_table_out_t){table_grid, NULL, bits, NULL, NULL, NULL, NULL};
                     }
                     vfi_preint_table_bruteforce(&fx.cls, slab_q16, &fx.scratch, want);
                     vfi_preint_table_incremental(&fx.cls, slab_q16, &fx.scratch, got);
@@ -775,7 +776,8 @@ static void tables_no_clamp(void)
     const uint32_t slabs[] = {65536 / 1024, 65536, 3 * 65536, UINT32_C(128) << 16};
     for (size_t sl = 0; sl < sizeof slabs / sizeof slabs[0]; sl++) {
         vfi_preint_table_incremental(&fx.cls, slabs[sl], &fx.scratch, q15_out(table2d));
-        vfi_preint_table_incremental(&fx.cls, slabs[sl], &fx.scratch, (vfi_table_out_t){NULL, table1024_u8, 0, NULL, NULL});
+        vfi_preint_table_incremental(&fx.cls, slabs[sl], &fx.scratch,
+                                     (vfi_table_out_t){NULL, table1024_u8, 0, NULL, NULL, NULL, NULL});
         for (size_t e = 0; e < (size_t)1024 * 1024; e++) {
             const uint16_t *q = table2d + e * 4;
             const uint8_t *u = table1024_u8 + e * 4;

@@ -47,7 +47,14 @@ static vf_params_t params_of(vf_mode_t mode)
     vf_params_default(&p);
     p.mode = mode;
     p.table_size = 64;
+    p.table2_size = 16; /* preint2: its 3D table, pieces and 2D table in the arena too */
     return p;
+}
+
+/* The fault loops' modes: point, preint1, preint2. */
+static vf_mode_t mode_of(int m)
+{
+    return m == 0 ? VF_MODE_POINT : m == 1 ? VF_MODE_PREINT1 : VF_MODE_PREINT2;
 }
 
 /* A dense transfer function (many runs) and a sparse one (few). */
@@ -100,8 +107,8 @@ static void render_reference(vf_mode_t mode, const vf_tf_t *tf, const vf_view_t 
 static void create_fault_loop(void)
 {
     fill_volume();
-    for (int m = 0; m < 2; m++) {
-        vf_params_t p = params_of(m ? VF_MODE_PREINT1 : VF_MODE_POINT);
+    for (int m = 0; m < 3; m++) {
+        vf_params_t p = params_of(mode_of(m));
         int succeeded = 0;
         for (uint32_t fail = 1; fail < 100 && !succeeded; fail++) {
             vf_arena_t arena;
@@ -135,8 +142,8 @@ static void create_fault_loop(void)
 static void create_every_size(void)
 {
     fill_volume();
-    for (int m = 0; m < 2; m++) {
-        vf_params_t p = params_of(m ? VF_MODE_PREINT1 : VF_MODE_POINT);
+    for (int m = 0; m < 3; m++) {
+        vf_params_t p = params_of(mode_of(m));
         size_t bytes = 0;
         CHECK_EQ(vf_renderer_bytes(&p, &volume, &bytes), VF_OK);
         CHECK(bytes < sizeof arena_buf - 64);
@@ -197,10 +204,10 @@ static int job_render(void *arg)
 static void set_tf_fault_loop(void)
 {
     fill_volume();
-    for (int m = 0; m < 2; m++)
+    for (int m = 0; m < 3; m++)
         for (int v = 0; v < 2; v++) {
             const vf_view_t *view = v ? &view_x : &view_z;
-            vf_params_t p = params_of(m ? VF_MODE_PREINT1 : VF_MODE_POINT);
+            vf_params_t p = params_of(mode_of(m));
             int succeeded = 0;
             for (uint32_t extra = 0; extra < 50 && !succeeded; extra++) {
                 vf_arena_t arena;
@@ -242,10 +249,10 @@ static void set_tf_failure_inside_frame(void)
     fill_volume();
     char report[1024] = "";
     int bad = 0;
-    for (int m = 0; m < 2; m++)
+    for (int m = 0; m < 3; m++)
         for (int v = 0; v < 2; v++) {
             const vf_view_t *view = v ? &view_x : &view_z;
-            vf_params_t p = params_of(m ? VF_MODE_PREINT1 : VF_MODE_POINT);
+            vf_params_t p = params_of(mode_of(m));
             for (uint32_t extra = 0; extra < 6; extra++) {
                 vf_arena_t arena;
                 vf_arena_init(&arena, arena_buf, sizeof arena_buf);
@@ -277,8 +284,8 @@ static void set_tf_failure_inside_frame(void)
 static void set_tf_short_arena(void)
 {
     fill_volume();
-    for (int m = 0; m < 2; m++) {
-        vf_params_t p = params_of(m ? VF_MODE_PREINT1 : VF_MODE_POINT);
+    for (int m = 0; m < 3; m++) {
+        vf_params_t p = params_of(mode_of(m));
         size_t bytes = 0;
         CHECK_EQ(vf_renderer_bytes(&p, &volume, &bytes), VF_OK);
         for (size_t spare = 0; spare < 4096; spare += 97) {

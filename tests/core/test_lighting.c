@@ -232,7 +232,7 @@ static void shade_table(void)
 {
     const uint32_t levels = vfi_normal_levels(12), count = vfi_normal_code_count(levels);
     int32_t *unit = malloc(sizeof(int32_t) * 3 * count);
-    uint32_t *shade = malloc(sizeof(uint32_t) * count);
+    uint64_t *shade = malloc(sizeof(uint64_t) * count);
     CHECK(unit && shade);
     vfi_normals_decode(levels, unit);
     for (int t = 0; t < 12; t++) {

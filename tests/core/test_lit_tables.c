@@ -67,7 +67,7 @@ static int fixture_init(fixture_t *fx, uint32_t n)
 
 static vfi_table_out_t q15_out(uint16_t *table, uint16_t *lit)
 {
-    vfi_table_out_t out = {table, NULL, 0, lit, NULL};
+    vfi_table_out_t out = {table, NULL, 0, lit, NULL, NULL, NULL};
     return out;
 }
 
@@ -490,9 +490,10 @@ static void lit_formats(void)
                     const uint32_t bits = format == 0 ? 8 : format == 1 ? 10 : 12, levels = (1u << bits) - 1;
                     const int level = format == 0 ? 1 : (int)((32768 + levels - 1) / levels);
                     for (int builder = 0; builder < 2; builder++) {
-                        vfi_table_out_t out = {NULL, u8_main[builder], 0, NULL, u8_lit[builder]};
+                        vfi_table_out_t out = {NULL, u8_main[builder], 0, NULL, u8_lit[builder], NULL, NULL};
                         if (format > 0)
-                            out = (vfi_table_out_t){grid_main[builder], NULL, bits, grid_lit[builder], NULL};
+                            out = (vfi_table_out_t){grid_main[builder], NULL, bits, grid_lit[builder], NULL, NULL,
+                                                    NULL};
                         if (builder)
                             vfi_preint_table_bruteforce(&fx.cls, slab_q16, &fx.scratch, out);
                         else
@@ -622,7 +623,7 @@ static void lit_extremes(void)
     for (size_t sl = 0; sl < sizeof slabs / sizeof slabs[0]; sl++) {
         vfi_preint_table_incremental(&fx.cls, slabs[sl], &fx.scratch, q15_out(main_a, lit_a));
         vfi_preint_table_incremental(&fx.cls, slabs[sl], &fx.scratch,
-                                     (vfi_table_out_t){NULL, main_u8, 0, NULL, lit_u8});
+                                     (vfi_table_out_t){NULL, main_u8, 0, NULL, lit_u8, NULL, NULL});
         for (size_t e = 0; e < (size_t)MAX_N * MAX_N; e++)
             for (int c = 0; c < 4; c++) {
                 const uint16_t m = main_a[e * 4 + c], l = lit_a[e * 4 + c];

@@ -20,7 +20,7 @@ for cmd in render compare bench; do
 done
 expect_error "unknown command" "unknown command 'paint'" paint
 expect_error "unknown option" "--colour: unknown option" render phantom:sphere:8 --colour red -o "$tmp/x.png"
-expect_error "bad mode" "--mode lines: expected point, preint1 or preclass" render phantom:sphere:8 --mode lines -o "$tmp/x.png"
+expect_error "bad mode" "--mode lines: expected point, preint1, preclass or preint2" render phantom:sphere:8 --mode lines -o "$tmp/x.png"
 expect_error "bad view" "--view 30: expected AZ,EL" render phantom:sphere:8 --view 30 -o "$tmp/x.png"
 expect_error "bad size" "--size 0x10: expected WxH" render phantom:sphere:8 --size 0x10 -o "$tmp/x.png"
 expect_error "bad format" "--format bgr: expected rgb888, rgb565 or xrgb8888" render phantom:sphere:8 --format bgr -o "$tmp/x.png"
@@ -29,6 +29,27 @@ expect_error "bad table size" "--table-size 4096: expected an integer from 2 to 
 expect_error "no output" "no output file (-o OUT.png, or --hash)" render phantom:sphere:8
 expect_error "no volume" "no volume given" compare --json
 expect_error "preset and tf" "give --preset or --tf, not both" render phantom:sphere:8 --preset ramp --tf x -o "$tmp/x.png"
+
+# preint2 (docs/algorithm.md section 8): what it takes and only it takes, and its table's command
+expect_error "bilinear preint2" "--lookup bilinear: preint2 looks its 3D table up nearest or trilinear" \
+    render phantom:sphere:8 --mode preint2 --lookup bilinear -o "$tmp/x.png"
+expect_error "trilinear preint1" "--lookup trilinear: only preint2 has a 3D table" \
+    render phantom:sphere:8 --lookup trilinear -o "$tmp/x.png"
+expect_error "preint2 partial slabs" "--partial-slabs: preint2 does not shorten its slabs" \
+    render phantom:sphere:8 --mode preint2 --partial-slabs -o "$tmp/x.png"
+expect_error "bad table2 size" "--table2-size 8: expected an integer from 16 to 128" \
+    render phantom:sphere:8 --mode preint2 --table2-size 8 -o "$tmp/x.png"
+expect_error "bad order" "--order 3: expected 1 or 2" tables --order 3
+expect_error "bad order-2 size" "--size 200: expected an integer from 16 to 128" tables --order 2 --size 200
+if "$sim" tables --order 2 --size 16 --table-size 32 --lit --repeat 1 --json >"$tmp/t2.json" 2>&1 &&
+    grep -q '"size2": 16' "$tmp/t2.json" && grep -q '"table_bytes": 32768' "$tmp/t2.json" &&
+    grep -q '"lit_bytes": 65536' "$tmp/t2.json" &&
+    awk -F'"max_err_lsb": ' '{ split($2, v, ","); exit !(v[1] + 0 <= 1) }' "$tmp/t2.json" &&
+    awk -F'"lit_max_err_lsb": ' '{ split($2, v, ","); exit !(v[1] + 0 <= 1) }' "$tmp/t2.json"; then
+    ok "tables --order 2 --json: a 16^3 table's memory, and its values and lighting values within 1 LSB of double"
+else
+    fail "tables --order 2" "$(head -c 300 "$tmp/t2.json")"
+fi
 
 # --rays: 1, 2, 4, 8 or 16; above 1 only the reference has it (docs/algorithm.md section 4b)
 for cmd in render compare bench ray; do

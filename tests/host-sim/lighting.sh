@@ -111,8 +111,8 @@ phong=$(h --shade phong | cut -c1-16)
     fail "--shade phong" "unlit $unlit, phong $phong, --light 0,0 $(h --light 0,0), --material $(h --material 0.1,0.7,0.2,10)"
 distinct=""
 for opts in "--light 40,30" "--light 0,0 --light -60,10" "--material 0.3,0.5,0.6,40" "--normal-bits 8" \
-    "--shade-lookup nearest" "--gradient-opacity 20,120" "--shade none --gradient-opacity 20,120" \
-    "--mode point --shade-lookup nearest" "--mode preclass --normal-bits 16"; do
+    "--shade-lookup bilinear" "--gradient-opacity 20,120" "--shade none --gradient-opacity 20,120" \
+    "--mode point --shade-lookup bilinear" "--mode preclass --normal-bits 16"; do
     # shellcheck disable=SC2086
     got=$(h --shade phong $opts | cut -c1-16)
     case "$opts" in --shade\ none*) got=$(h $opts | cut -c1-16) ;; esac

@@ -149,8 +149,8 @@ static void every_option_against_reference(void)
     const char *volume = check_data("neghip.nhdr", path, sizeof path);
     CHECK_MSG(volume, "%s", path);
     int count = 0;
-    for (int mode = 0; mode < VF_MODE_COUNT; mode++)
-        for (int lookup = 0; lookup < VF_LOOKUP_COUNT; lookup++)
+    for (int mode = 0; mode <= VF_MODE_PRECLASS; mode++) /* preint2's: test_order2_frames.c */
+        for (int lookup = 0; lookup <= VF_LOOKUP_BILINEAR; lookup++)
             for (int bits = 8; bits <= 16; bits += 8)
                 for (int corr = 0; corr < VF_CORRECTION_COUNT; corr++)
                     for (int buf = 0; buf < VF_BUFFER_COUNT; buf++) {
@@ -184,8 +184,8 @@ static void rays_and_partial_slabs_against_reference(void)
     const char *views[] = {"60,-35", "200,40,10"};
     for (uint32_t rays = 1; rays <= 4; rays *= 2)
         for (int partial = 0; partial < 2; partial++)
-            for (int mode = 0; mode < VF_MODE_COUNT; mode++)
-                for (int lookup = 0; lookup < VF_LOOKUP_COUNT; lookup++)
+            for (int mode = 0; mode <= VF_MODE_PRECLASS; mode++) /* preint2 has no partial slabs; its rays: */
+                for (int lookup = 0; lookup <= VF_LOOKUP_BILINEAR; lookup++) /* test_order2_frames.c */
                     for (int variant = 0; variant < 3; variant++) { /* 16-bit; 8-bit; lut or image buffer */
                         if (rays == 1 && !partial)
                             continue; /* every_option_against_reference */

@@ -30,7 +30,8 @@ static int random_scalar(int x, int y, int z) { (void)x, (void)y, (void)z; retur
 
 static ref_params_t params(ref_mode_t mode, int N)
 {
-    return (ref_params_t){mode, N, {0, 0, 0}, NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1, NULL};
+    return (ref_params_t){mode, N, {0, 0, 0}, NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1, NULL,
+                          0};
 }
 
 static const ref_mode_t modes[3] = {REF_MODE_POINT, REF_MODE_PREINT1, REF_MODE_PRECLASS};
@@ -600,7 +601,7 @@ static void bad_arguments(void)
         CHECK_EQ(ref_render(&vol, &tf, 1, &p, &view, 8, 8, rgb, NULL), -1);
     }
     p = params(REF_MODE_POINT, 64);
-    p.mode = (ref_mode_t)3;
+    p.mode = (ref_mode_t)4; /* after REF_MODE_PREINT2 */
     CHECK_EQ(ref_render(&vol, &tf, 1, &p, &view, 8, 8, rgb, NULL), -1);
     p.mode = (ref_mode_t)-1;
     CHECK_EQ(ref_render(&vol, &tf, 1, &p, &view, 8, 8, rgb, NULL), -1);

@@ -98,7 +98,7 @@ static void one_ray_is_the_old_image(void)
         static double rgb[3][24 * 20 * 3];
         for (int q = 0; q < 3; q++) {
             ref_params_t p = {REF_MODE_PREINT1, 64, {0.1, 0.2, 0.3}, NULL, 0, 0, REF_LOOKUP_NEAREST, 16,
-                              REF_CORRECTION_REBUILD, n & 1, q == 2 ? 2 : q, NULL}; /* rays 0, 1 and 2 */
+                              REF_CORRECTION_REBUILD, n & 1, q == 2 ? 2 : q, NULL, 0}; /* rays 0, 1 and 2 */
             CHECK_EQ(ref_render(&vol, blob_tf, 6, &p, &views[n], 24, 20, rgb[q], NULL), 0);
         }
         CHECK(memcmp(rgb[0], rgb[1], sizeof rgb[0]) == 0);
@@ -380,14 +380,14 @@ static void bad_rays_refused(void)
                  -1);
         CHECK_EQ(ref_warp_rays(&f, bad[b], inter, (double[3]){0, 0, 0}, rgb), -1);
         ref_params_t p = {REF_MODE_PREINT1, 64, {0, 0, 0}, NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD,
-                          0, bad[b], NULL};
+                          0, bad[b], NULL, 0};
         CHECK_EQ(ref_render(&vol, blob_tf, 6, &p, &view, 8, 8, rgb, NULL), -1);
     }
     CHECK_EQ(ref_rays_size(&f, 0, &(int){0}, &(int){0}), -1); /* 0 means 1 in ref_params_t only */
     CHECK_EQ(ref_composite_rays(&vol, &f, REF_MODE_PREINT1, REF_LOOKUP_NEAREST, 64, table, NULL, 0, 0, inter), -1);
     for (int r = 0; r < 5; r++) {
         ref_params_t p = {REF_MODE_PREINT1, 64, {0, 0, 0}, NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD,
-                          1, all_rays[r], NULL};
+                          1, all_rays[r], NULL, 0};
         CHECK_EQ(ref_render(&vol, blob_tf, 6, &p, &view, 8, 8, rgb, NULL), 0);
     }
     free(s);

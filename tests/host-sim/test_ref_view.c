@@ -271,7 +271,7 @@ static void composite_head_on_closed_form(void)
     /* scale 1 (zoom sqrt 3 / 4 on 4 x 4): final pixels 1..2 are intermediate pixels 0..1, 0 and 3 outside */
     ref_view_t view = {0, 0, 0, sqrt(3.0) / 4};
     ref_params_t p = {REF_MODE_POINT, 256, {0.1, 0.2, 0.3}, NULL, 0, 0,
-                      REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1, NULL};
+                      REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1, NULL, 0};
     double rgb[4 * 4 * 3], col[3] = {0.2, 0.5, 0.9};
     for (int m = 0; m < 2; m++) {
         p.mode = m ? REF_MODE_PREINT1 : REF_MODE_POINT;
@@ -526,7 +526,7 @@ static void render_symmetric_sphere_axis_views(void)
     static double ref_img[31 * 31 * 3], img[31 * 31 * 3];
     for (int m = 0; m < 2; m++) {
         ref_params_t p = {m ? REF_MODE_PREINT1 : REF_MODE_POINT, 256, {0, 0, 0}, NULL, 0, 0,
-                          REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1, NULL};
+                          REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1, NULL, 0};
         CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &views[0], 31, 31, ref_img, NULL), 0);
         for (int n = 1; n < 7; n++) {
             ref_factor_t f;
@@ -552,7 +552,7 @@ static void render_roll_turns_image(void)
     static double a[W * W * 3], b[W * W * 3];
     for (int m = 0; m < 2; m++) {
         ref_params_t p = {m ? REF_MODE_PREINT1 : REF_MODE_POINT, 128, {0.25, 0.5, 0.75}, NULL, 0, 0,
-                          REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1, NULL};
+                          REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1, NULL, 0};
         ref_view_t v0 = {1234, 567, 0, 1.3}, v1 = {1234, 567, 16384, 1.3};
         ref_factor_t f0, f1;
         CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &v0, W, W, a, &f0), 0);
@@ -575,7 +575,7 @@ static void render_random_views_in_range(void)
     int background_pixels = 0, volume_pixels = 0;
     for (int n = 0; n < 40; n++) {
         ref_params_t p = {n & 1 ? REF_MODE_PREINT1 : REF_MODE_POINT, 2 + (int)(rnd() * 300), {0.2, 0.4, 0.6},
-                          NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1, NULL};
+                          NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1, NULL, 0};
         ref_view_t v = {(int32_t)(rnd() * 65536), (int32_t)(rnd() * 65536), (int32_t)(rnd() * 65536),
                         0.5 + rnd()};
         CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &v, 40, 30, img, NULL), 0);
@@ -591,7 +591,8 @@ static void render_random_views_in_range(void)
     }
     CHECK(background_pixels > 0 && volume_pixels > 0);
     /* bad arguments */
-    ref_params_t p = {REF_MODE_POINT, 1, {0, 0, 0}, NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1, NULL};
+    ref_params_t p = {REF_MODE_POINT, 1, {0, 0, 0}, NULL, 0, 0, REF_LOOKUP_NEAREST, 16, REF_CORRECTION_REBUILD, 0, 1,
+                      NULL, 0};
     ref_view_t v = {0, 0, 0, 1};
     CHECK_EQ(ref_render(&vol, blob_tf, 4, &p, &v, 40, 30, img, NULL), -1);
     p.table_size = 1025;

@@ -37,18 +37,22 @@ default="$volume --size 64x64 --format rgb565 --mode preint1 --preset ramp --vie
 changed="$volume --size 48x40 --format xrgb8888 --mode preint1 --preset sharp --view 200,-40,15 --zoom 1.3"
 changed="$changed --table-size 64 --table-bits 8 --lookup bilinear --correction lut --buffer image"
 
-# firmware NAME SCENE BAND_ROWS [GEN_OPTS]: build it and run it; $tmp/NAME.out gets its output, $tmp/NAME.status
-# its exit status (124: the timeout ended it)
+# firmware NAME SCENE BAND_ROWS [GEN_OPTS [FEATURES]]: build it (with the Makefile's MCU_FEATURES, or FEATURES and
+# its own build directory) and run it; $tmp/NAME.out gets its output, $tmp/NAME.status its exit status (124: the
+# timeout ended it)
 firmware() {
-    name=$1 scene=$2 rows=$3 gen=${4:-}
-    if ! ${MAKE:-make} --no-print-directory BUILD="$build" SAN="${SAN:-}" MCU_BUILD="$mcu" MCU_SCENE="$scene" \
-        MCU_BAND_ROWS="$rows" MCU_GEN_OPTS="$gen" mcu-firmware >"$tmp/$name.build" 2>&1; then
+    name=$1 scene=$2 rows=$3 gen=${4:-} features=${5:-}
+    dir=$mcu
+    set --
+    if [ -n "$features" ]; then dir=$mcu-$name; set -- MCU_FEATURES="$features"; fi
+    if ! ${MAKE:-make} --no-print-directory BUILD="$build" SAN="${SAN:-}" MCU_BUILD="$dir" MCU_SCENE="$scene" \
+        MCU_BAND_ROWS="$rows" MCU_GEN_OPTS="$gen" "$@" mcu-firmware >"$tmp/$name.build" 2>&1; then
         fail "$name" "make mcu-firmware failed: $(grep -m 3 -iE 'error|undefined' "$tmp/$name.build" | tr '\n' ' ')"
         return 1
     fi
     start=$(date +%s.%N)
     timeout 60 qemu-system-arm -M mps2-an386 -nographic -monitor none -serial none -semihosting \
-        -icount shift=0 -kernel "$mcu/fw.elf" >"$tmp/$name.out" 2>&1
+        -icount shift=0 -kernel "$dir/fw.elf" >"$tmp/$name.out" 2>&1
     echo $? >"$tmp/$name.status"
     end=$(date +%s.%N)
     echo "# $name: qemu ran $(awk "BEGIN { printf \"%.2f\", $end - $start }") s"
@@ -136,4 +140,17 @@ if firmware rays "$default --rays 2" 8; then
     else
         fail "rays refused" "status $status: $(tr '\n' ' ' <"$tmp/rays.out")"
     fi
+fi
+
+# 5. order 2, which the firmware's core leaves out (-DVF_ORDER2=0), built in: its frame equals the host's, and the
+# core at -Os still calls nothing but libgcc's helpers
+features=$(${MAKE:-make} -s --no-print-directory print-MCU_FEATURES | sed 's/-DVF_ORDER2=0/-DVF_ORDER2=1/')
+order2="$volume --size 64x64 --format rgb565 --mode preint2 --preset ramp --view 30,20 --table-size 32"
+order2="$order2 --table-bits 8 --table2-size 16"
+if firmware order2 "$order2" 8 "" "$features"; then
+    check_frame order2 "$order2"
+    arm-none-eabi-ld -r -o "$tmp/core2.o" "$mcu-order2"/core/*.o
+    calls=$(arm-none-eabi-nm -u "$tmp/core2.o" | awk '{ print $2 }' | grep -v '^__aeabi_' | tr '\n' ' ')
+    if [ -z "$calls" ]; then ok "the core with order 2 at -Os calls nothing but libgcc's __aeabi_ helpers"; else
+        fail "core with order 2 calls" "calls outside the core: $calls"; fi
 fi
