@@ -14,6 +14,9 @@ extern "C" {
 }
 
 #include <dirent.h>
+#include <fcntl.h>
+#include <setjmp.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -24,6 +27,7 @@ extern "C" {
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -75,6 +79,9 @@ struct Slice {
     double along = 0;         /* position along the series' normal */
 };
 
+/* Where a GDCM call that fails an assertion comes back to (guarded). */
+sigjmp_buf gdcm_abort;
+
 /* A failure with its line of text, thrown inside this file and caught at the C interface. */
 struct Failure {
     std::string text;
@@ -92,6 +99,7 @@ std::vector<Slice> choose_series(const std::string &path, std::vector<Slice> &sl
 void order_and_check(std::vector<Slice> &s, double normal[3], double *step);
 void read_pixels(vfp_volume_t *vol, const std::vector<Slice> &s, const std::string &path, bool quiet);
 std::string shown(const std::string &text);
+template <class F> bool guarded(F &&call);
 
 /**********************
  *      CLASSES
@@ -172,6 +180,40 @@ void fail(const std::string &name, const char *fmt, ...)
 }
 
 /* A description or UID as a message shows it: at most 64 characters. */
+void on_gdcm_abort(int)
+{
+    siglongjmp(gdcm_abort, 1);
+}
+
+/* Runs one GDCM call and returns what it returns, or false if it aborted. Debian's GDCM is built with assertions,
+ * and a file that ends inside a data element (a copy cut short) fails one (abort) where the reader would otherwise
+ * return false: so SIGABRT comes back here, and stderr, where the assertion prints its message, goes to /dev/null
+ * during the call, which keeps the error to this reader's one line. Both are process-wide for the call's length:
+ * volumes load on one thread, before anything else writes to stderr. The aborted call's objects are not destroyed
+ * (a few kilobytes and a file descriptor per such file). */
+template <class F> bool guarded(F &&call)
+{
+    std::fflush(stderr);
+    int saved = dup(2), null = open("/dev/null", O_WRONLY);
+    if (saved >= 0 && null >= 0)
+        dup2(null, 2);
+    struct sigaction on = {}, old = {};
+    on.sa_handler = on_gdcm_abort;
+    sigemptyset(&on.sa_mask);
+    sigaction(SIGABRT, &on, &old);
+    volatile bool ok = false;
+    if (sigsetjmp(gdcm_abort, 1) == 0)
+        ok = call();
+    sigaction(SIGABRT, &old, nullptr);
+    if (saved >= 0 && null >= 0)
+        dup2(saved, 2);
+    if (saved >= 0)
+        close(saved);
+    if (null >= 0)
+        close(null);
+    return ok;
+}
+
 std::string shown(const std::string &text)
 {
     return text.size() > 64 ? text.substr(0, 61) + "..." : text;
@@ -231,7 +273,7 @@ bool read_slices(const std::string &file, std::vector<Slice> &out)
 {
     gdcm::Reader reader;
     reader.SetFileName(file.c_str());
-    if (!reader.ReadUpToTag(gdcm::Tag(0x7fe0, 0x0010)))
+    if (!guarded([&] { return reader.ReadUpToTag(gdcm::Tag(0x7fe0, 0x0010)); }))
         return false;
     const gdcm::File &f = reader.GetFile();
     const gdcm::DataSet &ds = f.GetDataSet();
@@ -595,8 +637,19 @@ void read_pixels(vfp_volume_t *vol, const std::vector<Slice> &s, const std::stri
         const std::string &file = order[i];
         gdcm::ImageReader reader;
         reader.SetFileName(file.c_str());
-        if (!reader.Read())
-            fail(file, "GDCM cannot read this image");
+        /* GDCM reads pixel data that the file cuts short as if it were there (zeros) and only warns: its warning
+         * is caught here and made the error it is. */
+        std::ostringstream warnings;
+        std::ostream &was = gdcm::Trace::GetWarningStream();
+        gdcm::Trace::SetWarningStream(warnings);
+        gdcm::Trace::SetWarning(true);
+        bool read = guarded([&] { return reader.Read(); });
+        gdcm::Trace::SetWarning(false);
+        gdcm::Trace::SetWarningStream(was);
+        if (!read)
+            fail(file, "GDCM cannot read this image (a file cut short, or not an image GDCM knows)");
+        if (warnings.str().find("Incomplete Pixel Data") != std::string::npos)
+            fail(file, "(7fe0,0010) Pixel Data is cut short: the file ends before the image does (a copy cut short?)");
         const gdcm::Image &image = reader.GetImage();
         const gdcm::PixelFormat &pf = image.GetPixelFormat();
         if (pf.GetBitsAllocated() != a.bits || pf.GetSamplesPerPixel() != 1)
@@ -609,7 +662,7 @@ void read_pixels(vfp_volume_t *vol, const std::vector<Slice> &s, const std::stri
             fail(file, "(7fe0,0010) Pixel Data holds %lu bytes (expected %zu for %u x %u x %zu frame%s of %u bits)",
                  length, slice_bytes * frames, a.columns, a.rows, frames, frames == 1 ? "" : "s", a.bits);
         buffer.resize(length);
-        if (!image.GetBuffer(buffer.data()))
+        if (!guarded([&] { return image.GetBuffer(buffer.data()); }))
             fail(file, "(7fe0,0010) Pixel Data cannot be decoded (transfer syntax %s)",
                  gdcm::TransferSyntax::GetTSString(image.GetTransferSyntax()));
         for (const auto &fz : frames_of[file])

@@ -324,14 +324,21 @@ def enhanced_ct(path, slices, rows, cols, iop, positions, spacing, slope, inter,
     ds.save_as(path, write_like_original=False)
 
 
-def write_reference_nrrd(path, slices, rows, cols, spacing, type_name, fmt):
-    """The slices as the reader should see them, z = slice order, axis-aligned LPS: for comparing hashes."""
+def write_reference_nrrd(path, slices, rows, cols, spacing, type_name, fmt, directions=None):
+    """The slices as the reader should see them: a column, a row and a slice along NRRD's axes 0, 1, 2, with no space
+    (stored as they are, for series stacked along x, y, z) or in LPS along the directions given: for comparing
+    hashes."""
     data = []
     for values in slices:
         data.extend(values)
+    if directions:
+        where = "space: left-posterior-superior\nspace directions: %s\n" % " ".join(
+            "(%g,%g,%g)" % tuple(d * spacing[a] for d in directions[a]) for a in range(3))
+    else:
+        where = "spacings: %g %g %g\n" % tuple(spacing)
     with open(path, "wb") as f:
-        f.write(("NRRD0004\ntype: %s\ndimension: 3\nsizes: %d %d %d\nspacings: %g %g %g\nendian: little\n"
-                 "encoding: raw\n\n" % (type_name, cols, rows, len(slices), *spacing)).encode())
+        f.write(("NRRD0004\ntype: %s\ndimension: 3\nsizes: %d %d %d\n%sendian: little\n"
+                 "encoding: raw\n\n" % (type_name, cols, rows, len(slices), where)).encode())
         f.write(struct.pack("<%d%s" % (len(data), fmt), *data))
 
 
@@ -429,6 +436,8 @@ def dicom_cases(out):
     dicom_series(os.path.join(out, "mr8"), values, 11, 9, [0, 1, 0, 0, 0, -1],
                  [[k * 1.5, 0, 0] for k in range(6)], (1.1, 1.2, 1.5), bits=8, signed=False,
                  description="MR 8-bit sagittal")
+    write_reference_nrrd(os.path.join(out, "mr8.nrrd"), values, 11, 9, (1.1, 1.2, 1.5), "uint8", "B",
+                         directions=[(0, 1, 0), (0, 0, -1), (1, 0, 0)])
     # a missing slice: positions 0, 2, 4, 8, 10 mm
     values = [[k] * 64 for k in range(6)]
     pos = along(6, 2.0)
