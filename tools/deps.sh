@@ -16,8 +16,9 @@ need="$need libgdcm-dev g++"
 case "$for_what" in
   test) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf libc6-dev-arm64-cross libc6-dev-armhf-cross"
         need="$need valgrind umockdev libumockdev-dev xvfb xauth xdotool imagemagick"
-        # tests/port/dicom.sh and orientation.sh: series written by pydicom, compressed by GDCM's gdcmconv
-        need="$need python3-pydicom libgdcm-tools"
+        # tests/port/dicom.sh and orientation.sh: series written by pydicom, compressed by GDCM's gdcmconv;
+        # tests/port/libraries.sh: the NIfTI and NRRD readers against nifticlib and teem
+        need="$need python3-pydicom libgdcm-tools libnifti2-dev libteem-dev"
         need="$need gcc-arm-none-eabi qemu-system-arm" ;; # tests/mcu: the firmware for a Cortex-M4 board under qemu
   # make test-hw: a Debian kernel in qemu (TCG), an initramfs from busybox, the gpio-sim module built out of tree
   hw) need="$need qemu-system-x86 busybox-static cpio kmod xz-utils gzip gcc-12 make binutils" ;;
