@@ -67,9 +67,10 @@ static int from_nifti(const char *file, const char *out)
     }
     if (nim->nt > 1 || nim->nu > 1)
         rc = 2; /* volfix reads the first volume of a 4D file; the library reads them all */
-    o.spacing[0] = nim->dx;
-    o.spacing[1] = nim->dy;
-    o.spacing[2] = nim->dz;
+    /* pixdim's sign means nothing (the qform's qfac is pixdim[0]); nifticlib keeps it as written */
+    o.spacing[0] = fabs(nim->dx);
+    o.spacing[1] = fabs(nim->dy);
+    o.spacing[2] = fabs(nim->dz);
     /* nifticlib's choice: the sform when its code is set, else the qform; NIfTI's world is RAS */
     const nifti_dmat44 *m = nim->sform_code > 0 ? &nim->sto_xyz : nim->qform_code > 0 ? &nim->qto_xyz : NULL;
     if (m) {
