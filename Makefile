@@ -356,7 +356,7 @@ deps:
 
 run: DEPS_FOR = run
 run: deps
-	@$(MAKE) --no-print-directory $(JOBS) all
+	@$(MAKE) --no-print-directory $(JOBS) all $(BUILD)/peers/peer_compare
 	@sh tools/demo.sh
 
 test: DEPS_FOR = test
@@ -507,7 +507,7 @@ MCU_OPT       := -Os -g -ffunction-sections -fdata-sections -fno-tree-loop-distr
 # then corrects each segment), the brute-force table builder (the tests' oracle) and the front-weighted (lit)
 # tables (4.8 KB; the firmware renders without lighting) and order 2 (preint2: docs/performance.md gives its
 # code and the RAM of its table), which keeps the core within
-# issue 6's 24 KB of code; and its loops look no entry up ahead: on a core without caches that would only add
+# the 24 KB code budget; and its loops look no entry up ahead: on a core without caches that would only add
 # work, 17% more compositing time (qemu's instruction count: 79,819 ticks against 68,503).
 MCU_FEATURES  ?= -DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1 -DVF_MAX_TABLE_PARTS=1 -DVF_VIEW_TABLE=0 -DVF_TABLE_ON_DEMAND=0 \
                  -DVF_TABLE_ORACLE=0 -DVF_SPECIAL_LOOPS=0 -DVF_LOOK_AHEAD=0 -DVF_LIGHTING=0 -DVF_ORDER2=0
@@ -644,8 +644,10 @@ $(sort $(DEP_FILES)): ;
 
 # ---- make bench-peers: volfix and VolPack side by side (tools/peers/run.sh, docs/peers.md) ------------------------
 # VolPack and valgrind from apt (tools/deps.sh peers); volfix's VolPack client and image comparer built into
-# $(BUILD)/peers; then the same four scenes rendered by both, timed and counted (5 to 8 minutes, progress on stderr).
-.PHONY: bench-peers peers-deps
+# $(BUILD)/peers; then the same four scenes rendered by both, unlit and lit, timed and counted (10 to 15 minutes,
+# progress on stderr).
+.PHONY: bench-peers peers-deps peers-progs
+peers-progs: $(BUILD)/peers/volpack_peer $(BUILD)/peers/peer_compare
 peers-deps:
 	@sh tools/deps.sh peers
 
@@ -653,10 +655,17 @@ $(BUILD)/peers/volpack_peer: tools/peers/volpack_peer.c | peers-deps
 	@mkdir -p $(@D)
 	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -o $@ $< -lvolpack -lpng -lz -lm
 
-$(BUILD)/peers/peer_compare: tools/peers/peer_compare.c | peers-deps
+# peer_compare needs libpng only: make run uses it too, for its unlit | lit picture
+$(BUILD)/peers/peer_compare: tools/peers/peer_compare.c
 	@mkdir -p $(@D)
-	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -o $@ $< -lpng
+	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -o $@ $< -lpng -lm
 
 bench-peers: $(BUILD)/volfix-sim $(BUILD)/peers/volpack_peer $(BUILD)/peers/peer_compare
 	@BUILD=$(BUILD) VOLFIX_DATA=$(VOLFIX_DATA) sh tools/peers/run.sh
+
+# make volpack-check: VolPack's example image (without depth cueing) and volfix's lit preclass of the same
+# classification side by side in docs/images/volpack-check.png, and their PSNR (tools/peers/volpack_check.sh)
+.PHONY: volpack-check
+volpack-check: $(BUILD)/volfix-sim $(BUILD)/peers/volpack_peer $(BUILD)/peers/peer_compare
+	@BUILD=$(BUILD) VOLFIX_DATA=$(VOLFIX_DATA) sh tools/peers/volpack_check.sh
 # ---- end of make bench-peers ---------------------------------------------------------------------------------------

@@ -46,6 +46,19 @@ typedef struct vfi_span {
     uint32_t a, b;
 } vfi_span_t;
 
+/* Where the pixels from u on stop being all buffered or all unbuffered: the last slab's spans (last[count],
+ * ascending) say which of them hold the previous slice's samples. k is the first span that may reach u, and moves
+ * on as u does; the answer is at most b. */
+static inline uint32_t vfi_buffered_until(const vfi_span_t *last, uint32_t count, uint32_t *k, uint32_t u, uint32_t b,
+                                          bool *buffered)
+{
+    while (*k < count && last[*k].b <= u)
+        (*k)++;
+    *buffered = *k < count && last[*k].a <= u;
+    const uint32_t y = *buffered ? last[*k].b : *k < count ? last[*k].a : b;
+    return y < b ? y : b;
+}
+
 /* The runs of one intermediate row that a slab walked, so that the next slab knows where the buffered back samples
  * are its front samples (composite_order1.c). */
 typedef struct row_visits {
@@ -275,15 +288,7 @@ static VF_ALWAYS_INLINE void vfi_segment_preint1_lit(const row_job_t *job, uint3
 /* The shade of one voxel (preclass lights each of a sample's four voxels with its own). */
 static inline vfi_shade_t vfi_voxel_shade(const vfi_shading_t *sh, const uint8_t *p)
 {
-    const size_t at = (size_t)(p - sh->slices);
-    vfi_shade_t out = {VFI_SHADE_ONE, 0, 32768u};
-    if (sh->shade) {
-        const uint64_t e = sh->shade[sh->codes[at]];
-        out.d = vfi_shade_diffuse(e), out.s = vfi_shade_specular(e);
-    }
-    if (sh->ramp)
-        out.g = sh->ramp[sh->magnitudes[at]];
-    return out;
+    return vfi_voxel_shade_at(sh, (size_t)(p - sh->slices));
 }
 
 /* A slice sample's entry (point), or the interpolation of its four voxels' entries (preclass): the sample at p with

@@ -246,10 +246,8 @@ static VF_ALWAYS_INLINE void row(const row_job_t *job, const plain_row_t *pr, co
         /* each span starts at an open pixel, which the last span's loop found: pixels closed all the way cost
          * nothing but the step past them */
         for (uint32_t u = vfi_next_open(next, walked[w].a); u < b;) {
-            while (k < last_count && last[k].b <= u)
-                k++;
-            const bool buffered = k < last_count && last[k].a <= u;
-            const uint32_t y = MIN(buffered ? last[k].b : k < last_count ? last[k].a : b, b);
+            bool buffered;
+            const uint32_t y = vfi_buffered_until(last, last_count, &k, u, b, &buffered);
             if (!plain) {
                 u = span_general(job, u, y, buffered);
                 continue;

@@ -293,10 +293,8 @@ static void row(const order2_job_t *o, const plain2_t *pl, const vfi_span_t *wal
     for (uint32_t w = 0; w < count; w++) {
         const uint32_t b = walked[w].b;
         for (uint32_t u = vfi_next_open(next, walked[w].a); u < b;) {
-            while (k < last_count && last[k].b <= u)
-                k++;
-            const bool buffered = k < last_count && last[k].a <= u;
-            const uint32_t y = MIN(buffered ? last[k].b : k < last_count ? last[k].a : b, b);
+            bool buffered;
+            const uint32_t y = vfi_buffered_until(last, last_count, &k, u, b, &buffered);
             if (pl)
                 u = buffered ? span_plain2_buffered(pl, u, y) : span_plain2_sampled(pl, u, y);
             else

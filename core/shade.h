@@ -78,6 +78,19 @@ static inline uint64_t vfi_shade_column(const vfi_shading_t *sh, size_t at, uint
     return vfi_lanes_lerp(sh->shade[sh->codes[at]], sh->shade[sh->codes[at + row]], fy);
 }
 
+/* The shade of the voxel at index v of the slices: its normal's entry and its gradient ramp. */
+static inline vfi_shade_t vfi_voxel_shade_at(const vfi_shading_t *sh, size_t v)
+{
+    vfi_shade_t out = {VFI_SHADE_ONE, 0, 32768u};
+    if (sh->shade) {
+        const uint64_t e = sh->shade[sh->codes[v]];
+        out.d = vfi_shade_diffuse(e), out.s = vfi_shade_specular(e);
+    }
+    if (sh->ramp)
+        out.g = sh->ramp[sh->magnitudes[v]];
+    return out;
+}
+
 /* The shade of the sample at p (a voxel of the copy at sh->slices; its row is row elements long) with fractions
  * fx, fy (Q0.16). Bilinear: by columns, each lerped by fy, then the two columns by fx (the plain loops reuse a
  * column for the next pixel: composite_order1.c). */
@@ -86,16 +99,8 @@ static inline vfi_shade_t vfi_sample_shade(const vfi_shading_t *sh, const uint8_
 {
     const size_t at = (size_t)(p - sh->slices);
     vfi_shade_t out = {VFI_SHADE_ONE, 0, 32768u};
-    if (!sh->bilinear) {
-        const size_t v = at + (fy >= 32768u ? row : 0) + (fx >= 32768u ? 1 : 0);
-        if (sh->shade) {
-            const uint64_t e = sh->shade[sh->codes[v]];
-            out.d = vfi_shade_diffuse(e), out.s = vfi_shade_specular(e);
-        }
-        if (sh->ramp)
-            out.g = sh->ramp[sh->magnitudes[v]];
-        return out;
-    }
+    if (!sh->bilinear)
+        return vfi_voxel_shade_at(sh, at + (fy >= 32768u ? row : 0) + (fx >= 32768u ? 1 : 0));
     if (sh->shade) {
         const uint64_t e = vfi_lanes_lerp(vfi_shade_column(sh, at, row, fy), vfi_shade_column(sh, at + 1, row, fy), fx);
         out.d = vfi_shade_diffuse(e), out.s = vfi_shade_specular(e);

@@ -21,19 +21,25 @@ static uint32_t opacity_q30(uint64_t tau_length_q28);
 static inline void store(vfi_table_out_t out, size_t entry, const vfi_seg_t *s);
 static inline void store_lit(vfi_table_out_t out, size_t entry, const vfi_seg_t *s);
 
-/* Front to back: x in front of y. Every value stays at most 1.0, the bound table_store.h needs: if C <= A <= 1
- * for x and y, then A' = A_x + round((1 - A_x) A_y) <= A_x + (1 - A_x) = 1 (the rounded value of a number at
- * most the integer 1 - A_x is at most it) and C' = C_x + round((1 - A_x) C_y) <= A' (rounding is monotonic).
- * point_seg's and the brute force's intervals start with C = round(c a) <= a <= 1, since c, w <= 1. */
-static inline vfi_seg_t over(const vfi_seg_t *x, const vfi_seg_t *y)
+/* x's sums with y's added, y seen through transmittance t (Q.30): over() below, and the lit builders'
+ * front-weighted sums, each of which then stays at most its C or A term by term. */
+static inline vfi_seg_t add_behind(const vfi_seg_t *x, uint64_t t, const vfi_seg_t *y)
 {
-    uint64_t t = ONE_Q30 - x->a;
     vfi_seg_t s;
     s.r = x->r + (uint32_t)((t * y->r + HALF_Q30) >> 30);
     s.g = x->g + (uint32_t)((t * y->g + HALF_Q30) >> 30);
     s.b = x->b + (uint32_t)((t * y->b + HALF_Q30) >> 30);
     s.a = x->a + (uint32_t)((t * y->a + HALF_Q30) >> 30);
     return s;
+}
+
+/* Front to back: x in front of y. Every value stays at most 1.0, the bound table_store.h needs: if C <= A <= 1
+ * for x and y, then A' = A_x + round((1 - A_x) A_y) <= A_x + (1 - A_x) = 1 (the rounded value of a number at
+ * most the integer 1 - A_x is at most it) and C' = C_x + round((1 - A_x) C_y) <= A' (rounding is monotonic).
+ * point_seg's and the brute force's intervals start with C = round(c a) <= a <= 1, since c, w <= 1. */
+static inline vfi_seg_t over(const vfi_seg_t *x, const vfi_seg_t *y)
+{
+    return add_behind(x, ONE_Q30 - x->a, y);
 }
 
 void vfi_point_table(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out_t out)
@@ -59,18 +65,6 @@ void vfi_point_entries(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_o
 
 #if VF_TABLE_ORACLE
 static void bruteforce_lit(const vfi_classify_t *cls, uint32_t slab_q16, vfi_table_out_t out);
-
-/* lit: x's front-weighted sums with y's added, y seen through transmittance t (Q.30): as over() does for C, so
- * that each sum is at most its C or A term by term. */
-static inline vfi_seg_t add_behind(const vfi_seg_t *x, uint64_t t, const vfi_seg_t *y)
-{
-    vfi_seg_t s;
-    s.r = x->r + (uint32_t)((t * y->r + HALF_Q30) >> 30);
-    s.g = x->g + (uint32_t)((t * y->g + HALF_Q30) >> 30);
-    s.b = x->b + (uint32_t)((t * y->b + HALF_Q30) >> 30);
-    s.a = x->a + (uint32_t)((t * y->a + HALF_Q30) >> 30);
-    return s;
-}
 
 /* The oracle: docs/algorithm.md section 2 read literally, each entry on its own. It shares nothing with the
  * incremental builder (preint.c) but the exponential, the classification and the final rounding (table_store.h),

@@ -18,7 +18,7 @@
 #include "commands.h"
 #include "scene.h"
 
-#define MAX_VARIANTS 10
+#define MAX_VARIANTS 20
 
 static const char usage_head[] =
     "usage: volfix-sim bench VOLUME [options] [--frames N] [--rounds N] [--matrix] [--json]\n"
@@ -31,8 +31,10 @@ static const char usage_head[] =
     "                       every variant once, in an order rotated from round to round. Reports each\n"
     "                       round's mean and their median; ratios to point are taken within a round, their\n"
     "                       median over rounds reported (progress on stderr, one line per round)\n"
-    "  --matrix             the variants of Schulze et al.'s Table 1: point, then preint1 with every lookup x\n"
-    "                       correction x buffer, then preclass; other scene options apply to all\n"
+    "  --matrix             the variants of Schulze et al.'s Table 1 (point, then preint1 with every lookup x\n"
+    "                       correction x buffer, then preclass), then preint2 with 3D tables of 32, 64\n"
+    "                       and 128 a side, nearest and trilinear, lut-corrected, and 64 rebuilt per view;\n"
+    "                       other scene options apply to all\n"
     "  --json               print one JSON object (a list of them with --matrix)\n";
 
 /* One renderer under test and what its rounds measured. */
@@ -374,7 +376,7 @@ static void print_matrix(sim_scene_t *s, const variant_t *v, const plan_t *p, in
         printf("%s: %d thread%s (the layout of Schulze et al. 2003, Table 1)\n", about, s->threads,
                s->threads > 1 ? "s" : "");
         print_method(p);
-        printf("%-9s %-9s %-11s %-7s %9s %9s %8s %11s %8s   %-34s %s\n", "mode", "lookup", "correction", "buffer",
+        printf("%-11s %-9s %-11s %-7s %9s %9s %8s %11s %8s   %-34s %s\n", "mode", "lookup", "correction", "buffer",
                "ms/frame", "frames/s", "x point", "(min-max)", "median", "(tables + compositing + warp, ms)",
                "ms/frame per round");
     }
@@ -385,10 +387,11 @@ static void print_matrix(sim_scene_t *s, const variant_t *v, const plan_t *p, in
         if (json) {
             s->params = *q;
             sim_scene_describe(s, about, sizeof about);
-            printf("  {\"mode\": \"%s\", \"lookup\": \"%s\", \"correction\": \"%s\", \"buffer\": \"%s\", "
-                   "\"ms_per_frame\": %.3f, \"median_ms\": %.3f, \"frames\": %d, \"rounds\": %d, "
+            printf("  {\"mode\": \"%s\", \"table2_size\": %u, \"lookup\": \"%s\", \"correction\": \"%s\", "
+                   "\"buffer\": \"%s\", \"ms_per_frame\": %.3f, \"median_ms\": %.3f, \"frames\": %d, \"rounds\": %d, "
                    "\"ms_per_frame_rounds\": [",
-                   vf_mode_name(q->mode), vf_lookup_name(q->lookup), vf_correction_name(q->correction),
+                   vf_mode_name(q->mode), q->mode == VF_MODE_PREINT2 ? (unsigned)q->table2_size : 0u,
+                   vf_lookup_name(q->lookup), vf_correction_name(q->correction),
                    vf_buffer_name(q->buffer), m.mean, m.median, p->frames, p->rounds);
             print_list(v[c].round_mean, p->rounds, 3);
             printf("], \"x_point\": %.4f, \"x_point_min\": %.4f, \"x_point_max\": %.4f, \"x_point_rounds\": [",
@@ -401,7 +404,10 @@ static void print_matrix(sim_scene_t *s, const variant_t *v, const plan_t *p, in
             char range[32], split[64];
             snprintf(range, sizeof range, "(%.2f-%.2f)", m.ratio_min, m.ratio_max);
             snprintf(split, sizeof split, "(%.2f + %.2f + %.2f)", m.tables, m.composite, m.warp);
-            printf("%-9s %-9s %-11s %-7s %9.2f %9.1f %8.2f %11s %8.2f   %-34s", vf_mode_name(q->mode),
+            char mode[24];
+            snprintf(mode, sizeof mode, q->mode == VF_MODE_PREINT2 ? "%s/%u" : "%s", vf_mode_name(q->mode),
+                     (unsigned)q->table2_size);
+            printf("%-11s %-9s %-11s %-7s %9.2f %9.1f %8.2f %11s %8.2f   %-34s", mode,
                    vf_lookup_name(q->lookup), vf_correction_name(q->correction),
                    q->mode == VF_MODE_PREINT1 ? vf_buffer_name(q->buffer) : "-", m.mean, 1000.0 / m.mean, m.ratio,
                    range, m.median, split);
@@ -436,6 +442,21 @@ static int matrix_variants(const vf_params_t *scene_params, variant_t *v)
                 v[count++].params = q;
             }
     base.mode = VF_MODE_PRECLASS;
+    v[count++].params = base;
+    /* order 2 (not in Table 1): the 3D table at 32, 64 and 128 a side, looked up nearest and trilinearly, built
+     * once and corrected by lookup (a rotation changes the slab length every frame, and a rebuilt 128^3 table
+     * takes seconds); one row rebuilds the default 64^3 table for every view, for the cost of that */
+    base.mode = VF_MODE_PREINT2;
+    base.correction = VF_CORRECTION_LUT;
+    for (uint32_t n2 = 32; n2 <= 128; n2 *= 2)
+        for (int lookup = 0; lookup < 2; lookup++) {
+            vf_params_t q = base;
+            q.table2_size = n2;
+            q.lookup = lookup ? VF_LOOKUP_TRILINEAR : VF_LOOKUP_NEAREST;
+            v[count++].params = q;
+        }
+    base.table2_size = 64;
+    base.correction = VF_CORRECTION_REBUILD;
     v[count++].params = base;
     return count;
 }

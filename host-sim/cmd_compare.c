@@ -17,6 +17,8 @@ static const char usage_head[] =
     "  --against W          reference (default: the same algorithm in double, so the difference is the\n"
     "                       fixed-point error) or truth (the ground-truth ray caster: the algorithm's own error\n"
     "                       as well)\n"
+    "  --truth-filter F     the truth's reconstruction: trilinear (default), smooth (a phantom's own function\n"
+    "                       where it has one, else catmull-rom), catmull-rom, bspline or analytic (unlit only)\n"
     "  -o FILE              also write the core's image as a PNG\n"
     "  --diff FILE          write the difference (largest channel, times 32) as a PNG\n"
     "  --json               print one JSON object: psnr_db, max_abs, mean_abs, over1_pct, and per channel\n";

@@ -4,6 +4,7 @@
 #include "commands.h"
 #include "io/pngio.h"
 #include "scene.h"
+#include "truth/truth.h"
 
 static const char usage_head[] =
     "usage: volfix-sim render VOLUME [options] -o OUT.png | --hash\n"
@@ -14,7 +15,9 @@ static const char usage_head[] =
     "                       compare frames across machines; with or without -o\n"
     "  --reference          use the double-precision reference renderer\n"
     "  --truth              use the ground-truth ray caster (trilinear, continuous transfer function, exact\n"
-    "                       integration; --mode, --rays, --partial-slabs and the table options do not apply)\n";
+    "                       integration; --mode, --rays, --partial-slabs and the table options do not apply)\n"
+    "  --truth-filter F     the truth's reconstruction: trilinear (default), smooth (a phantom's own function\n"
+    "                       where it has one, else catmull-rom), catmull-rom, bspline or analytic (unlit only)\n";
 
 int sim_cmd_render(int argc, char **argv)
 {
@@ -47,7 +50,10 @@ int sim_cmd_render(int argc, char **argv)
         fprintf(stderr, "volfix-sim: %s\n", err);
     } else {
         sim_scene_describe(&scene, about, sizeof about);
-        const char *which = o.reference ? " (reference)" : o.truth ? " (ground truth)" : "";
+        char truth[64];
+        snprintf(truth, sizeof truth, " (ground truth%s%s)", o.truth_filter ? ", " : "",
+                 o.truth_filter ? truth_filter_name((truth_filter_t)o.truth_filter) : "");
+        const char *which = o.reference ? " (reference)" : o.truth ? truth : "";
         if (o.hash)
             printf("%016llx %s%s\n", (unsigned long long)hash, about, which);
         if (o.out)

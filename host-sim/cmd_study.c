@@ -15,7 +15,7 @@
 #include "study.h"
 
 static const char usage[] =
-    "usage: volfix-sim study [--quick] [--lighting-only] -o DIR [--threads N]\n"
+    "usage: volfix-sim study [--quick] [--lighting-only | --order2-only] -o DIR [--threads N]\n"
     "The fixed-point precision study. Renders scenes with the core in many configurations and measures each\n"
     "against the double reference of the same algorithm (the fixed-point error alone) and against the ground\n"
     "truth ray caster (the algorithm's own error), with the memory it needs. One factor at a time around the\n"
@@ -29,6 +29,8 @@ static const char usage[] =
     "board and for a microcontroller with 256 KB of RAM.\n\n"
     "  --quick              the subset that runs in make test (under two minutes)\n"
     "  --lighting-only      the lighting stages alone (with --quick, their quick subset)\n"
+    "  --order2-only        preint2's 3D table alone: resolution 16..128 and entry bits against the reference\n"
+    "                       and both truths, memory, the size per board (DIR/order2.md, .csv, .gp, .png)\n"
     "  -o DIR               where to write (created)\n"
     "  --threads N          threads for the ground truth (default 2)\n"
     "The sample volumes (neghip, engine, bucky, ...) come from the folder $VOLFIX_DATA, when it is set.\n";
@@ -220,6 +222,8 @@ int sim_cmd_study(int argc, char **argv)
             st->quick = 1;
         } else if (strcmp(argv[i], "--lighting-only") == 0) {
             st->lighting_only = 1;
+        } else if (strcmp(argv[i], "--order2-only") == 0) {
+            st->order2_only = 1;
         } else if (strcmp(argv[i], "-o") == 0 && i + 1 < argc) {
             st->dir = argv[++i];
         } else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
@@ -258,6 +262,17 @@ int sim_cmd_study(int argc, char **argv)
     char path[1024];
     sweep_ctx_t c = {.st = st};
     const uint32_t small = 256;
+    if (st->order2_only) {
+        vfp_status_t o2 = study_order2(st, data, c.err, sizeof c.err);
+        if (o2)
+            fprintf(stderr, "volfix-sim study: %s\n", c.err);
+        else
+            printf("study: preint2's 3D table in %.0f s; report in %s/order2.md\n",
+                   (vfp_now_ms() - st->started_ms) / 1000, st->dir);
+        study_free(st);
+        free(st);
+        return vfp_exit_status(o2);
+    }
     if (st->lighting_only)
         goto lighting;
 

@@ -1,6 +1,8 @@
 /* options.c: parse the options volfix-sim's commands share (see options.h). */
 #include "options.h"
 
+#include "truth/truth.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -267,6 +269,11 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
                 o->truth = 0;
             else
                 return bad(a, v, "reference or truth");
+        } else if ((groups & (SIM_OPT_TRUTH | SIM_OPT_AGAINST | SIM_OPT_FILTER)) && strcmp(a, "--truth-filter") == 0) {
+            truth_filter_t filter;
+            if (truth_filter_parse(v, &filter))
+                return bad(a, v, "trilinear, smooth, catmull-rom, bspline or analytic");
+            o->truth_filter = (int)filter;
         } else if ((groups & SIM_OPT_PIXEL) && strcmp(a, "--pixel") == 0) {
             double xy[3];
             if (!v || parse_doubles(v, xy, 2, 3) != 2)
@@ -306,6 +313,11 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
     }
     if ((groups & SIM_OPT_SCENE) && !o->volume) {
         fprintf(stderr, "volfix-sim: no volume given (see --help)\n");
+        return VFP_ERR;
+    }
+    if (o->truth_filter != TRUTH_FILTER_TRILINEAR && !o->truth && !(groups & SIM_OPT_FILTER)) {
+        fprintf(stderr, "volfix-sim: --truth-filter: only the ground truth has a filter (add %s)\n",
+                (groups & SIM_OPT_AGAINST) ? "--against truth" : "--truth");
         return VFP_ERR;
     }
     if (o->reference && o->truth) {

@@ -22,6 +22,7 @@ typedef struct sim_opts {
     int threads;               /* --threads */
     int reference;             /* --reference: render with the double reference */
     int truth;                 /* --truth (render), --against truth (compare): the ground-truth ray caster */
+    int truth_filter;          /* --truth-filter: the truth's reconstruction, a truth_filter_t (0: trilinear) */
     int have_pixel;            /* --pixel X,Y given */
     double pixel[2];           /* --pixel X,Y: a final-image position */
     const char *out;           /* -o FILE */
@@ -47,6 +48,7 @@ enum {
     SIM_OPT_PIXEL = 512,  /* --pixel X,Y */
     SIM_OPT_HASH = 1024,  /* --hash */
     SIM_OPT_ROUNDS = 2048, /* --rounds */
+    SIM_OPT_FILTER = 4096, /* --truth-filter for a command that always uses the truth's reconstruction (ray) */
 };
 
 /* Parse argv (after the command name). Returns VFP_OK, VFP_HELP_SHOWN when --help was asked (usage printed), or

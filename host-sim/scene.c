@@ -58,6 +58,7 @@ vfp_status_t sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size
     s->height = o->height;
     s->format = o->format;
     s->threads = o->threads;
+    s->truth_filter = o->truth_filter;
     return VFP_OK;
 }
 
@@ -274,10 +275,29 @@ vfp_status_t sim_render_truth(const sim_scene_t *s, vf_image_t *img, char *err, 
     if (double_frame_begin(s, "the ground truth", &in, &rgb, img, err, errlen))
         return VFP_ERR;
     ref_lighting_t lighting;
-    int status = truth_render_lit(&in.vol, in.tf, in.npoints, in.background, &in.view, (int)s->width,
-                                  (int)s->height, s->threads, NULL, sim_ref_lighting(s, &lighting), rgb);
-    if (status)
-        snprintf(err, errlen, "the ground-truth ray caster failed (status %d)", status);
+    truth_field_t field;
+    truth_opts_t opts = TRUTH_OPTS_DEFAULT;
+    opts.field = &field;
+    int status = truth_field_init(&field, &in.vol, (truth_filter_t)s->truth_filter,
+                                  strcmp(s->vol.format, "phantom") == 0 ? s->vol.name : NULL, s->window.lo,
+                                  s->window.hi);
+    if (status == 0 && field.filter != TRUTH_FILTER_TRILINEAR && s->params.lighting)
+        status = -3;
+    if (status == -3)
+        snprintf(err, errlen, "--truth-filter %s: the lit truth reconstructs trilinearly only (drop the lighting "
+                 "or the filter)", truth_filter_name((truth_filter_t)s->truth_filter));
+    else if (status == -2)
+        snprintf(err, errlen, "--truth-filter analytic: %s has no analytic function (phantom:NAME:N with NAME "
+                 "marschner-lobb, sphere or cube)", s->vol.name);
+    else if (status)
+        snprintf(err, errlen, "out of memory for the ground truth's filter");
+    if (status == 0) {
+        status = truth_render_lit(&in.vol, in.tf, in.npoints, in.background, &in.view, (int)s->width,
+                                  (int)s->height, s->threads, &opts, sim_ref_lighting(s, &lighting), rgb);
+        if (status)
+            snprintf(err, errlen, "the ground-truth ray caster failed (status %d)", status);
+    }
+    truth_field_free(&field);
     return double_frame_end(s, status, &in, rgb, img);
 }
 

@@ -26,6 +26,7 @@ typedef struct sim_scene {
     uint32_t width, height;
     vf_format_t format;
     int threads;
+    int truth_filter; /* the truth's reconstruction (truth.h's truth_filter_t; 0: trilinear) */
 } sim_scene_t;
 
 /* The start of a command that renders a scene: its options parsed (the usage is usage_head, then the scene options'

@@ -102,6 +102,7 @@ typedef struct study {
     int threads;           /* for truth renders */
     int quick;
     int lighting_only;     /* --lighting-only: the lighting stages alone, and a report of them alone */
+    int order2_only;       /* --order2-only: preint2's 3D table study alone (study_order2.c, its own files) */
     const char *dir;
     double started_ms;
     int progress_tty;      /* rewrite one progress line (a terminal) or print one per run (a log) */
@@ -173,6 +174,11 @@ const uint8_t *study_truth(study_t *st, int scene, char *err, size_t errlen);
  * N table entries (0: the scene's own). Returns VFP_OK, or VFP_ERR with err. */
 vfp_status_t study_floor(study_t *st, int scene, int rays, int table_size, study_floor_t *out, char *err,
                          size_t errlen);
+
+/* study_order2.c: preint2's 3D table, resolution 16..128 and entry bits 16..8, on Marschner-Lobb 41^3 and (full
+ * study, with data) neghip, against the reference, both truths, with memory; DIR/order2.csv, .gp, .png, .md with
+ * the size for 256 KB, 1 MB and 64 MB boards. Returns VFP_OK, or VFP_ERR with err. */
+vfp_status_t study_order2(study_t *st, const char *data, char *err, size_t errlen);
 
 void study_free(study_t *st);
 

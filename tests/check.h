@@ -35,12 +35,21 @@ static inline uint32_t check_below(uint64_t *state, uint32_t n)
     return (uint32_t)((check_rand64(state) >> 33) % n);
 }
 
+/* check_mod: one in [0, n) from the low bits, the draw the older core suites' random cases come from (their
+ * measured bounds are for those cases, so they keep it). */
+static inline uint32_t check_mod(uint64_t *state, uint32_t n)
+{
+    return (uint32_t)(check_rand64(state) % n);
+}
+
 /* A sample volume: NAME in the folder $VOLFIX_DATA (make test sets it; the Makefile names the default). Writes
  * its path into path and returns path; when the variable is unset or the file is not there, writes why instead
  * (naming VOLFIX_DATA) and returns NULL, for the test to fail with. */
 const char *check_data(const char *name, char *path, size_t len);
 
 #define CHECK_CASES(...) static const check_case_t check_cases_[] = {__VA_ARGS__}
+/* One entry of CHECK_CASES: a case named as its function is. */
+#define CHECK_CASE(fn) {#fn, fn}
 #define CHECK_RUN(suite) \
     int main(int argc, char **argv) \
     { \

@@ -5,7 +5,8 @@
 # every variant's 90 frames once per round, the order rotated from round to round, ratios to point taken
 # within a round; ms/frame is the median over rounds of each round's mean. Quote timings with the machine
 # they came from.
-# How long: 2 to 4 minutes on a 2-core machine, most of it the matrix (brainsmall's slow variants the longest);
+# How long: 4 to 8 minutes on a 2-core machine, most of it the matrix (brainsmall's slow variants and preint2's
+# 128^3 tables the longest);
 # the tables, callgrind and the viewer take under a minute together. ROUNDS=1 saves about a minute.
 cd "$(dirname "$0")/.." || exit 2
 sim=${BUILD:-build}/volfix-sim
@@ -63,7 +64,7 @@ instructions() {
 if command -v valgrind >/dev/null; then
     echo "== instructions per frame (callgrind, vfp_render_frame inclusive, 2 frames averaged)"
     for v in $volumes; do
-        point=
+        point= lut=
         for mode in point preint1; do
             total=$(instructions "$v" 1 --mode "$mode")
             if [ -z "$total" ]; then
@@ -87,6 +88,19 @@ if command -v valgrind >/dev/null; then
             awk -v v="$(basename "$v")" -v p="$point" -v q="$lut" \
                 'BEGIN { printf "%-24s point / preint1 lut = %.2f (instructions per frame)\n", v, p / 2 / q }'
         fi
+        # preint2, lut-corrected as in the matrix: a frame after the first, as for preint1's lut
+        for cfg in "64 nearest" "128 nearest" "64 trilinear"; do
+            set -- $cfg
+            one=$(instructions "$v" 1 --mode preint2 --correction lut --table2-size "$1" --lookup "$2")
+            three=$(instructions "$v" 3 --mode preint2 --correction lut --table2-size "$1" --lookup "$2")
+            if [ -n "$one" ] && [ -n "$three" ] && [ -n "$point" ]; then
+                p2=$(((three - one) / 2))
+                printf '%-24s %-8s %s instructions per frame after the first (lut, %s^3, %s)\n' "$(basename "$v")" \
+                    preint2 "$p2" "$1" "$2"
+                [ -n "$lut" ] && awk -v v="$(basename "$v")" -v q="$lut" -v r="$p2" \
+                    'BEGIN { printf "%-24s preint1 lut / preint2 = %.2f (instructions per frame)\n", v, q / r }'
+            fi
+        done
     done
 else
     echo "(valgrind not installed: no instruction counts)"

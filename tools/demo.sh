@@ -4,6 +4,7 @@
 # come from the folder VOLFIX_DATA (make exports it) when it is there.
 cd "$(dirname "$0")/.." || exit 2
 sim=${BUILD:-build}/volfix-sim
+compare=${BUILD:-build}/peers/peer_compare # two images side by side (built by make run; it needs libpng only)
 data=${VOLFIX_DATA:-}
 have_data() { [ -n "$data" ] && [ -f "$data/engine.nhdr" ] && [ -f "$data/cthead.nhdr" ]; }
 mkdir -p out
@@ -23,9 +24,23 @@ show() { # output name, then volfix-sim compare arguments
 echo "volfix demo: the fixed-point core renders, the double-precision reference checks every pixel"
 show out/marschner-lobb.png phantom:marschner-lobb:64 --preset sharp --view 30,20 || exit 1
 show out/shepp-logan.png phantom:shepp-logan:128 --preset ramp --view 0,-60 || exit 1
+echo "Lit (Blinn-Phong from quantised gradient normals; the CT presets are lit by default, docs/usage.md \"Lighting\"):"
+show out/marschner-lobb-lit.png phantom:marschner-lobb:64 --preset sharp --view 30,20 --shade phong --light 30,30 ||
+    exit 1
 if have_data; then
-    show out/engine.png "$data/engine.nhdr" --preset ramp --view 30,20 --threads 2 || exit 1
-    show out/cthead.png "$data/cthead.nhdr" --preset ct-skin-bone --view 180,90 --threads 2 || exit 1
+    # half resolution: the double reference of a lit 256x256x128 volume alone takes 10 s
+    show out/engine-lit.png "$data/engine.nhdr" --preset ct-bone --view 30,20 --downsample 2 --threads 2 || exit 1
+    show out/cthead-lit.png "$data/cthead.nhdr" --preset ct-skin-bone --view 180,90 --threads 2 || exit 1
+    show out/brainsmall-lit.png "$data/brainsmall.nhdr" --preset mr-brain --shade phong --view 150,-20 --zoom 1.3 \
+        --threads 2 || exit 1
+    # one scene unlit and lit, side by side (the README's picture, docs/images/unlit-lit.png, is this file)
+    pair="$data/engine.nhdr --preset ct-bone --view 30,20 --zoom 1.5 --size 384x384 --threads 2"
+    # shellcheck disable=SC2086 # a list of options
+    "$sim" render $pair --shade none -o out/unlit.png >/dev/null &&
+        "$sim" render $pair -o out/lit.png >/dev/null &&
+        "$compare" out/unlit.png out/lit.png --flip none --pair -o out/unlit-lit.png >/dev/null || exit 1
+    echo "  out/unlit-lit.png                engine, ct-bone: --shade none | lit (volfix-sim render $(echo "$pair" |
+        sed "s|$data/||"))"
 else
     echo "  (no sample volumes in VOLFIX_DATA='$data': the CT engine and head are left out. For them, set"
     echo "   VOLFIX_DATA to a folder of NRRD volumes such as the volfix shared data, whose README.md names each"

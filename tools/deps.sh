@@ -19,7 +19,8 @@ case "$for_what" in
         # tests/port/dicom.sh and orientation.sh: series written by pydicom, compressed by GDCM's gdcmconv;
         # tests/port/libraries.sh: the NIfTI and NRRD readers against nifticlib and teem
         need="$need python3-pydicom libgdcm-tools libnifti2-dev libteem-dev"
-        need="$need gcc-arm-none-eabi qemu-system-arm" ;; # tests/mcu: the firmware for a Cortex-M4 board under qemu
+        need="$need gcc-arm-none-eabi qemu-system-arm" # tests/mcu: the firmware for a Cortex-M4 board under qemu
+        need="$need libvolpack1-dev" ;; # tests/peers: VolPack's example image against volfix
   # make test-hw: a Debian kernel in qemu (TCG), an initramfs from busybox, the gpio-sim module built out of tree
   hw) need="$need qemu-system-x86 busybox-static cpio kmod xz-utils gzip gcc-12 make binutils" ;;
   # make fuzz: clang and its libFuzzer, ASan and UBSan runtimes (compiler-rt)

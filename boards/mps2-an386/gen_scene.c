@@ -69,6 +69,8 @@ static int measure(const sim_scene_t *s, uint32_t band_rows, size_t *arena_bytes
         vf_tf_t tf = {s->points, s->npoints};
         st = vf_renderer_set_tf(r, &tf);
     }
+    if (st == VF_OK && s->params.lighting)
+        st = vf_renderer_set_lighting(r, &s->lighting);
     if (st == VF_OK) {
         *arena_bytes = vf_renderer_needed_bytes(r);
         if (*arena_bytes < arena.peak)
@@ -129,6 +131,16 @@ static int write_header(const char *path, const sim_scene_t *s, uint32_t band_ro
             p->rays, (int)p->partial_slabs, p->background[0], p->background[1], p->background[2], p->sample_bits,
             p->intermediate_bits, p->warp_bits, (int)p->lighting, p->normal_bits, (int)p->shade_lookup,
             p->table2_size);
+    /* the lighting vf_renderer_set_lighting takes after the transfer function, as volfix-sim render sets it
+     * (host-sim/scene.c, sim_core_lighting); only for a renderer made with params.lighting */
+    const vf_lighting_t *l = &s->lighting;
+    fprintf(f, "#define SCENE_LIGHTING %d\n", (int)p->lighting);
+    if (p->lighting)
+        fprintf(f, "static const vf_lighting_t scene_lighting = {\n"
+                   "    .shade = %d, .light_count = %uu, .lights = {{%d, %d}, {%d, %d}},\n"
+                   "    .ka = %u, .kd = %u, .ks = %u, .shininess = %u, .gradient_lo = %u, .gradient_hi = %u,\n};\n",
+                (int)l->shade, l->light_count, l->lights[0].azimuth, l->lights[0].elevation, l->lights[1].azimuth,
+                l->lights[1].elevation, l->ka, l->kd, l->ks, l->shininess, l->gradient_lo, l->gradient_hi);
     if (fclose(f) != 0) {
         snprintf(err, errlen, "%s: write failed", path);
         return 2;

@@ -66,6 +66,11 @@ int main(void)
             report("arena too small: ", vf_renderer_needed_bytes(r), " bytes needed\n");
         return failed("vf_renderer_set_tf", s);
     }
+#if SCENE_LIGHTING
+    /* a lit scene (a firmware whose core is built with VF_LIGHTING=1): its lights and material, per frame */
+    if ((s = vf_renderer_set_lighting(r, &scene_lighting)) != VF_OK)
+        return failed("vf_renderer_set_lighting", s);
+#endif
     t[2] = ticks();
 
     /* One frame, as vf_renderer_draw does it but in bands: the scratch then holds SCENE_BAND_ROWS rows, not the whole
@@ -100,6 +105,8 @@ int main(void)
     report("", m.classify, ", tables ");
     report("", m.tables, ", intermediate ");
     report("", m.intermediate, "");
+    if (m.normals) /* lighting: normal codes and gradient magnitudes per principal axis, the shade table */
+        report(", normals ", m.normals, "");
     if (m.order2) /* preint2's 3D table and its pieces */
         report(", order2 ", m.order2, "");
     sh_puts(")\n");

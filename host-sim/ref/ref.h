@@ -28,6 +28,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 /* A windowed 8-bit scalar volume S[x][y][z], x fastest in memory. spacing: the quantised spacing the core uses
  * (q / 65536); only ratios matter. Each dimension 2..REF_MAX_DIM, largest spacing <= 64 x smallest. */
@@ -127,6 +128,18 @@ typedef struct ref_factor {
 /* ---- ref_window.c -------------------------------------------------------------------------------------- */
 
 enum { REF_VOXEL_U8, REF_VOXEL_I8, REF_VOXEL_U16, REF_VOXEL_I16 };
+
+/* Raw voxel n of an array of the given type, signed where the type is (16-bit voxels in the host's order). */
+static inline int32_t ref_raw_voxel(const void *raw, int type, size_t n)
+{
+    const unsigned char *p = raw;
+    switch (type) {
+    case REF_VOXEL_U8: return p[n];
+    case REF_VOXEL_I8: return (int8_t)p[n];
+    case REF_VOXEL_U16: { uint16_t v; memcpy(&v, p + 2 * n, 2); return v; }
+    default: { int16_t v; memcpy(&v, p + 2 * n, 2); return v; }
+    }
+}
 
 /* s = clamp(round((v - lo) * 255 / (hi - lo)), 0, 255) for every voxel (native byte order). lo != hi. */
 int ref_window(const void *raw, int type, const int dims[3], int32_t lo, int32_t hi, uint8_t *out);

@@ -10,17 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int64_t raw_at(const void *raw, int type, size_t n)
-{
-    const unsigned char *p = raw;
-    switch (type) {
-    case REF_VOXEL_U8: return p[n];
-    case REF_VOXEL_I8: return (int8_t)p[n];
-    case REF_VOXEL_U16: { uint16_t v; memcpy(&v, p + 2 * n, 2); return v; }
-    default: { int16_t v; memcpy(&v, p + 2 * n, 2); return v; }
-    }
-}
-
 /* floor(sqrt(v)), exactly: the double root corrected by a step or two either way */
 static uint64_t isqrt64(uint64_t v)
 {
@@ -73,8 +62,8 @@ static void grad_at(const grad_ctx_t *g, int x, int y, int z, int64_t G[3], doub
     for (int a = 0; a < 3; a++) {
         const int lo = p[a] > 0 ? p[a] - 1 : 0, hi = p[a] + 1 < g->vol->dims[a] ? p[a] + 1 : p[a];
         const int c = hi - lo; /* 2 inside, 1 at a face */
-        const int64_t D = raw_at(g->raw, g->type, at + (size_t)(hi - p[a]) * g->stride[a]) -
-                          raw_at(g->raw, g->type, at - (size_t)(p[a] - lo) * g->stride[a]);
+        const int64_t D = (int64_t)ref_raw_voxel(g->raw, g->type, at + (size_t)(hi - p[a]) * g->stride[a]) -
+                          (int64_t)ref_raw_voxel(g->raw, g->type, at - (size_t)(p[a] - lo) * g->stride[a]);
         G[a] = D * g->q[a][c - 1];
         if (gd)
             gd[a] = (double)D * g->w[a][c - 1];

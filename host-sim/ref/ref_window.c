@@ -5,17 +5,6 @@
 #include <stddef.h>
 #include <string.h>
 
-static int32_t raw_value(const void *raw, int type, size_t n)
-{
-    const unsigned char *p = raw;
-    switch (type) {
-    case REF_VOXEL_U8: return p[n];
-    case REF_VOXEL_I8: return (int8_t)p[n];
-    case REF_VOXEL_U16: { uint16_t v; memcpy(&v, p + 2 * n, 2); return v; }
-    default: { int16_t v; memcpy(&v, p + 2 * n, 2); return v; }
-    }
-}
-
 /* The quotient (v - lo) * 255 / (hi - lo) is a ratio of integers below 2^42 in magnitude, so one rounding of
  * the double division cannot move it across a half-integer (it is at least 1 / (2 |hi - lo|) away from one
  * unless it is exactly on one, and then the division is exact): round half up below is the exact rule. */
@@ -29,7 +18,7 @@ int ref_window(const void *raw, int type, const int dims[3], int32_t lo, int32_t
     size_t count = (size_t)dims[0] * (size_t)dims[1] * (size_t)dims[2];
     double den = (double)((int64_t)hi - lo);
     for (size_t n = 0; n < count; n++) {
-        double x = (double)(((int64_t)raw_value(raw, type, n) - lo) * 255) / den;
+        double x = (double)(((int64_t)ref_raw_voxel(raw, type, n) - lo) * 255) / den;
         double s = floor(x + 0.5);
         out[n] = (uint8_t)(s < 0 ? 0 : s > 255 ? 255 : s);
     }

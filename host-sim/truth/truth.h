@@ -100,6 +100,20 @@ int truth_camera(const ref_volume_t *vol, const ref_view_t *view, int out_w, int
 int truth_camera_ray(const truth_camera_t *cam, double px, double py, double origin[3], double dir[3],
                      double *t_in, double *t_out);
 
+/* A ray's walk through the cells [c, c + 1]^3, c_a in 0..n_a - 2 (3D DDA, Amanatides and Woo), from t_in to t_out
+ * along origin + t dir. A ray on a cell face may be given either cell: the fields are continuous there. */
+typedef struct truth_walk {
+    int piece[3];        /* the cell of the piece truth_walk_next returned last */
+    int cell[3], step[3], dims[3], done;
+    double t_next[3], t, t_out;
+    const double *o, *d;
+} truth_walk_t;
+
+void truth_walk_start(truth_walk_t *w, const int dims[3], const double origin[3], const double dir[3], double t_in,
+                      double t_out);
+/* The next piece [*t0, *t1] of the ray, in cell w->piece; 0 once the ray has left the volume. */
+int truth_walk_next(truth_walk_t *w, double *t0, double *t1);
+
 /* The trilinear scalar at object point p (clamped to the volume). */
 double truth_sample(const ref_volume_t *vol, const double p[3]);
 
@@ -113,17 +127,19 @@ double truth_sample(const ref_volume_t *vol, const double p[3]);
  *   TRUTH_LOOSEST_TOL, for the same error in less time. 0: scalar_tol everywhere.
  * The defaults' own error, against 1/64-voxel steps, a 1e-6 tolerance and steep 0: at most 4e-4 per channel
  * (0.1 of an 8-bit level) and 2e-6 on average on marschner-lobb 41^3 with the sharp preset, 512x512 at 30,20. */
+typedef struct truth_field truth_field_t;
 typedef struct truth_opts {
     double max_step;
     double scalar_tol;
     double steep;
+    const truth_field_t *field; /* the reconstruction (truth_smooth.c); NULL: trilinear */
 } truth_opts_t;
 
 #define TRUTH_MAX_STEP (1.0 / 16.0)
 #define TRUTH_SCALAR_TOL (1.0 / 4096.0)
 #define TRUTH_STEEP 0.2 /* opacity 0 to 1 within 5 levels (the sharp preset's peaks, 2% of the range wide) */
 #define TRUTH_LOOSEST_TOL (1.0 / 16.0)
-#define TRUTH_OPTS_DEFAULT {TRUTH_MAX_STEP, TRUTH_SCALAR_TOL, TRUTH_STEEP}
+#define TRUTH_OPTS_DEFAULT {TRUTH_MAX_STEP, TRUTH_SCALAR_TOL, TRUTH_STEEP, NULL}
 
 /* Integrate the ray through final pixel (px, py): rgba_out = premultiplied r, g, b and opacity A (no
  * background). opts NULL: the defaults above. */
@@ -151,6 +167,66 @@ int truth_lit_init(truth_lit_t *lit, const ref_volume_t *vol, const truth_camera
 /* truth_trace, lit (lit NULL: unlit, truth_trace itself). */
 void truth_trace_lit(const ref_volume_t *vol, const truth_tf_t *tf, const truth_camera_t *cam,
                      const truth_opts_t *opts, const truth_lit_t *lit, double px, double py, truth_acc_t *acc);
+
+/* ---- truth_smooth.c -------------------------------------------------------------------------------------- */
+
+/* Smoother reconstructions than trilinear, for ranking the orders of integration: along an oblique ray a
+ * trilinear field bends only at cell faces and is linear along an axis, which favours order 1; the signal
+ * order 2 is meant to follow is the smooth one the samples came from (docs/algorithm.md, section 8b).
+ *   - TRUTH_FILTER_CATMULL_ROM: the tensor-product Catmull-Rom cubic of the windowed scalars; it interpolates
+ *     (equals every voxel at its grid point) and reproduces quadratics. Outside the volume the ghost samples
+ *     are extrapolated linearly (2 v_0 - v_1), so linear data stays linear up to the faces.
+ *   - TRUTH_FILTER_BSPLINE: the cubic B-spline of the same samples (approximates: at a grid point it is the
+ *     1-4-1 / 6 blend in each axis; reproduces linear data; never leaves the range of its 4^3 samples).
+ *   - TRUTH_FILTER_ANALYTIC: a phantom's own function (truth_phantom_fn) before it was rounded to 8 bits,
+ *     windowed like the voxels and clamped to [0, 255].
+ * The cubic filters' values are clamped to [0, 255] like every scalar. The ray is walked cell by cell as the
+ * trilinear truth walks it; a cell is skipped when the transfer function is clear on a bound of the scalar
+ * there (the range of its 4^3 samples, widened by 0.477 of it for Catmull-Rom, whose negative weights sum to
+ * 0.477 at most in 3D); each sub-step of at most max_step is halved until the scalar at its middle is within
+ * 4 scalar_tol of its chord (relaxed by `steep` as for trilinear), and integrated as two linear pieces.
+ * Lighting is trilinear only (truth_render_lit refuses a field with lighting). */
+typedef enum truth_filter {
+    TRUTH_FILTER_TRILINEAR = 0,
+    TRUTH_FILTER_CATMULL_ROM,
+    TRUTH_FILTER_BSPLINE,
+    TRUTH_FILTER_ANALYTIC,
+    TRUTH_FILTER_SMOOTH, /* only as a request: ANALYTIC for a phantom that has one, else CATMULL_ROM */
+} truth_filter_t;
+
+/* A phantom's raw value (0..255, unrounded) at object index point p of a volume of dims. */
+typedef double (*truth_phantom_fn_t)(const double p[3], const int dims[3]);
+
+struct truth_field {
+    truth_filter_t filter;         /* CATMULL_ROM, BSPLINE or ANALYTIC */
+    const ref_volume_t *vol;
+    truth_phantom_fn_t analytic;   /* ANALYTIC */
+    double win_lo, win_hi;         /* ANALYTIC: the window that maps raw values to scalars */
+    uint8_t *cell_lo, *cell_hi;    /* cubic filters: bounds on the scalar in cell c, (n_a - 1) per axis */
+};
+
+/* The analytic function of phantom:NAME:N (marschner-lobb, sphere, cube), or NULL when NAME has none
+ * (shepp-logan: a sum of ellipsoids with jumps, no smooth signal) or spec is not a phantom. */
+truth_phantom_fn_t truth_phantom_fn(const char *spec);
+
+/* "trilinear", "catmull-rom", "bspline", "analytic", "smooth": 0 and *filter, or -1. */
+int truth_filter_parse(const char *text, truth_filter_t *filter);
+const char *truth_filter_name(truth_filter_t filter);
+
+/* Prepare a field for vol (which must outlive it). phantom_spec: the volume's phantom spec or NULL; win_lo,
+ * win_hi: the window of the raw values (ref_window's). filter SMOOTH resolves as above; TRILINEAR gives a field
+ * with filter TRILINEAR that the truth treats as NULL. Returns 0, -1 on bad arguments or out of memory, -2 for
+ * ANALYTIC on a volume without an analytic function. */
+int truth_field_init(truth_field_t *field, const ref_volume_t *vol, truth_filter_t filter, const char *phantom_spec,
+                     double win_lo, double win_hi);
+void truth_field_free(truth_field_t *field);
+
+/* The field's scalar at object index point p (clamped to the volume), in [0, 255]. */
+double truth_field_sample(const truth_field_t *field, const double p[3]);
+
+/* The field's part of truth_trace: the ray through (px, py) walked through the field. */
+void truth_trace_field(const truth_tf_t *tf, const truth_camera_t *cam, const truth_opts_t *opts, double px,
+                       double py, truth_acc_t *acc);
 
 /* ---- truth_render.c -------------------------------------------------------------------------------------- */
 
@@ -185,16 +261,29 @@ typedef struct truth_study {
     int k_axis, k_flip; /* the principal axis as ref_factor chooses it */
     double slab;        /* world length of one unit of k (ref_factor's slab length d) */
     double xi[3][2];    /* xi[order][spacing - 1] = integral over [k_a, k_b] of |signal - reconstruction| dk */
+    /* The renderers' own segments (docs/algorithm.md sections 4 and 8): point and preint1 as order 0 and 1 at
+     * spacing 1; preint2's slabs start on even standard slices (k = 0, 2, ...), each the quadratic through its
+     * three samples clamped to their range, and a volume with n_k - 1 odd ends in one order-1 slab. Compared on
+     * [r_a, r_b], the whole slabs of preint2 inside the ray's slices (also its last order-1 slab, when the ray
+     * reaches the last slice). xi_r[0..2] = point, preint1, preint2 there. */
+    double r_a, r_b;
+    double xi_r[3];
     /* the signal and the reconstructions on a grid of `per_voxel` points per unit of k over [k_in, k_out]:
-     * rows of 8 values t, signal, order0_1, order1_1, order2_1, order0_2, order1_2, order2_2 (NaN where a
-     * reconstruction is not defined) */
+     * rows of TRUTH_STUDY_COLS values t, signal, order0_1, order1_1, order2_1, order0_2, order1_2, order2_2,
+     * preint2 (NaN where a reconstruction is not defined) */
     int rows;
     double *table;
 } truth_study_t;
+#define TRUTH_STUDY_COLS 9
 
-/* Returns 0, 1 when the ray misses the volume or crosses too few slices for a spacing-2 order-2 slab, or -1. */
+/* Returns 0, 1 when the ray misses the volume or crosses too few slices for a spacing-2 order-2 slab, or -1.
+ * field: the signal's reconstruction (truth_smooth.c), NULL or trilinear: trilinear; the samples on the slices
+ * are the field's too (a renderer samples the data bilinearly in a slice: against a smooth field the samples
+ * are where the smooth signal is, which isolates the error along the ray). */
 int truth_study_ray(const ref_volume_t *vol, const ref_view_t *view, int out_w, int out_h, double px, double py,
                     int per_voxel, truth_study_t *study);
+int truth_study_ray_field(const ref_volume_t *vol, const truth_field_t *field, const ref_view_t *view, int out_w,
+                          int out_h, double px, double py, int per_voxel, truth_study_t *study);
 void truth_study_free(truth_study_t *study);
 
 #endif /* TRUTH_H */

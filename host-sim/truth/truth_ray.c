@@ -104,37 +104,62 @@ void truth_trace(const ref_volume_t *vol, const truth_tf_t *tf, const truth_came
 void truth_trace_lit(const ref_volume_t *vol, const truth_tf_t *tf, const truth_camera_t *cam,
                      const truth_opts_t *opts, const truth_lit_t *lit, double px, double py, truth_acc_t *acc)
 {
+    if (opts->field && opts->field->filter != TRUTH_FILTER_TRILINEAR) {
+        truth_trace_field(tf, cam, opts, px, py, acc); /* unlit: truth_render_lit refuses a field with lighting */
+        return;
+    }
     acc->T = 1;
     acc->C[0] = acc->C[1] = acc->C[2] = 0;
     double o[3], d[3], t_in, t_out;
     if (!truth_camera_ray(cam, px, py, o, d, &t_in, &t_out))
         return;
-    /* 3D DDA (Amanatides and Woo) through the cells [c, c + 1]^3, c_a in 0..n_a - 2; a ray on a cell face may be
-     * given either cell: trilinear interpolation is continuous there */
-    int cell[3], step[3];
-    double t_next[3];
+    truth_walk_t w;
+    truth_walk_start(&w, vol->dims, o, d, t_in, t_out);
+    double t0, t1;
+    while (acc->T > 1.0 - TRUTH_STOP_OPACITY && truth_walk_next(&w, &t0, &t1))
+        cell_segment(vol, tf, opts, lit, w.piece, o, d, t0, t1, acc);
+}
+
+void truth_walk_start(truth_walk_t *w, const int dims[3], const double origin[3], const double dir[3], double t_in,
+                      double t_out)
+{
+    w->o = origin, w->d = dir, w->t = t_in, w->t_out = t_out, w->done = 0;
     for (int a = 0; a < 3; a++) {
-        double p = o[a] + t_in * d[a];
-        step[a] = d[a] > 0 ? 1 : d[a] < 0 ? -1 : 0;
-        double c = step[a] < 0 ? ceil(p) - 1 : floor(p);
-        cell[a] = c < 0 ? 0 : c > vol->dims[a] - 2 ? vol->dims[a] - 2 : (int)c;
-        t_next[a] = step[a] == 0 ? INFINITY : (cell[a] + (step[a] > 0) - o[a]) / d[a];
+        const double p = origin[a] + t_in * dir[a];
+        w->dims[a] = dims[a];
+        w->step[a] = dir[a] > 0 ? 1 : dir[a] < 0 ? -1 : 0;
+        const double c = w->step[a] < 0 ? ceil(p) - 1 : floor(p);
+        w->cell[a] = c < 0 ? 0 : c > dims[a] - 2 ? dims[a] - 2 : (int)c;
+        w->t_next[a] = w->step[a] == 0 ? INFINITY : (w->cell[a] + (w->step[a] > 0) - origin[a]) / dir[a];
     }
-    double t0 = t_in;
-    while (t0 < t_out && acc->T > 1.0 - TRUTH_STOP_OPACITY) {
-        int a = t_next[0] <= t_next[1] && t_next[0] <= t_next[2] ? 0 : t_next[1] <= t_next[2] ? 1 : 2;
-        double t1 = fmin(t_next[a], t_out);
-        if (t1 > t0) {
-            cell_segment(vol, tf, opts, lit, cell, o, d, t0, t1, acc);
-            t0 = t1;
+}
+
+int truth_walk_next(truth_walk_t *w, double *t0, double *t1)
+{
+    while (!w->done && w->t < w->t_out) {
+        const int a = w->t_next[0] <= w->t_next[1] && w->t_next[0] <= w->t_next[2] ? 0
+                      : w->t_next[1] <= w->t_next[2]                                ? 1
+                                                                                      : 2;
+        const double end = fmin(w->t_next[a], w->t_out), start = w->t;
+        for (int b = 0; b < 3; b++)
+            w->piece[b] = w->cell[b];
+        if (end > start)
+            w->t = end;
+        if (w->t_next[a] >= w->t_out) {
+            w->done = 1;
+        } else {
+            w->cell[a] += w->step[a];
+            if (w->cell[a] < 0 || w->cell[a] > w->dims[a] - 2)
+                w->done = 1;
+            else
+                w->t_next[a] = (w->cell[a] + (w->step[a] > 0) - w->o[a]) / w->d[a];
         }
-        if (t_next[a] >= t_out)
-            break;
-        cell[a] += step[a];
-        if (cell[a] < 0 || cell[a] > vol->dims[a] - 2)
-            break;
-        t_next[a] = (cell[a] + (step[a] > 0) - o[a]) / d[a];
+        if (end > start) {
+            *t0 = start, *t1 = end;
+            return 1;
+        }
     }
+    return 0;
 }
 
 int truth_ray_ex(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, const ref_view_t *view,
@@ -165,18 +190,6 @@ int truth_ray(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoints, co
 }
 
 /* ---- static functions ---------------------------------------------------------------------------------- */
-
-/* The raw voxel n, signed where the type is. */
-static double raw_at(const void *raw, int type, size_t n)
-{
-    const unsigned char *p = raw;
-    switch (type) {
-    case REF_VOXEL_U8: return p[n];
-    case REF_VOXEL_I8: return (int8_t)p[n];
-    case REF_VOXEL_U16: { uint16_t v; memcpy(&v, p + 2 * n, 2); return v; }
-    default: { int16_t v; memcpy(&v, p + 2 * n, 2); return v; }
-    }
-}
 
 /* The shade at cell-local point q (each in [0, 1]) from the raw field's trilinear coefficients k (k0, kx, ky, kz,
  * kxy, kxz, kyz, kxyz): the gradient in index units, then in world units (over Sr), normalised; its magnitude
@@ -248,7 +261,7 @@ static void cell_segment(const ref_volume_t *vol, const truth_tf_t *tf, const tr
     if (lit) {
         double r[8];
         for (int m = 0; m < 8; m++)
-            r[m] = raw_at(lit->lights.lighting->raw, lit->lights.lighting->raw_type,
+            r[m] = (double)ref_raw_voxel(lit->lights.lighting->raw, lit->lights.lighting->raw_type,
                           (size_t)(cell[0] + (m & 1)) + sy * (size_t)(cell[1] + ((m >> 1) & 1)) +
                               sz * (size_t)(cell[2] + (m >> 2)));
         rk[0] = r[0], rk[1] = r[1] - r[0], rk[2] = r[2] - r[0], rk[3] = r[4] - r[0];

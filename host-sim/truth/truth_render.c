@@ -77,7 +77,9 @@ int truth_render_lit(const ref_volume_t *vol, const ref_tf_point_t *tf, int npoi
     truth_lit_t lit;
     if (!background || !rgb || threads < 1 || threads > TRUTH_MAX_THREADS ||
         (opts && !(opts->max_step > 0 && opts->scalar_tol > 0 && opts->steep >= 0)) ||
-        truth_camera(vol, view, out_w, out_h, &cam) || (lighting && truth_lit_init(&lit, vol, &cam, lighting)))
+        truth_camera(vol, view, out_w, out_h, &cam) || (lighting && truth_lit_init(&lit, vol, &cam, lighting)) ||
+        (lighting && opts && opts->field && opts->field->filter != TRUTH_FILTER_TRILINEAR) ||
+        (opts && opts->field && opts->field->vol != vol))
         return -1;
     truth_tf_t *prepared = malloc(sizeof *prepared);
     if (!prepared || truth_tf_init(prepared, tf, npoints)) {

@@ -16,6 +16,7 @@
 #include <linux/input-event-codes.h>
 
 #define MAX_LINE_OFFSET 65535
+#define DEFAULT_CYCLE_STEP 5.0 /* a cycled action's step when knob.N.cycle gives none, as knob.N.step's default */
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Tables */
@@ -26,7 +27,7 @@ static const char *const top_keys[T_COUNT] = {
     "input", "input.script", "gpio.chip", "threads", "idle_ms", "overlay",
 };
 static const char *const knob_keys[KN_COUNT] = {"a", "b", "pull", "action", "step", "device", "axis", "key_up",
-                                                "key_down"};
+                                                "key_down", "cycle"};
 static const char *const button_keys[BT_COUNT] = {"line", "pull", "active_low", "debounce_ms", "action", "device",
                                                   "code"};
 
@@ -301,6 +302,44 @@ static vfp_status_t parse_action(vfpi_board_parser_t *p, const char *value, int 
     return VFP_OK;
 }
 
+/* knob.N.cycle = ACTION[:STEP], ...: up to VFP_MAX_CYCLE - 1 more knob actions, each with its step (default 5),
+ * into cycle[1..]; board_check.c puts the knob's own action and step in cycle[0]. */
+static vfp_status_t parse_cycle(vfpi_board_parser_t *p, const char *keyname, const char *value, vfp_knob_t *k)
+{
+    char list[256];
+    if (strlen(value) >= sizeof list)
+        return vfpi_board_fail(p, p->line, "%s: too long (expected at most %d actions)", keyname, VFP_MAX_CYCLE - 1);
+    strcpy(list, value);
+    k->cycle_count = 1;
+    char *save = NULL;
+    for (char *item = strtok_r(list, ",", &save); item; item = strtok_r(NULL, ",", &save)) {
+        item = trim(item);
+        if (k->cycle_count == VFP_MAX_CYCLE)
+            return vfpi_board_fail(p, p->line, "%s: expected at most %d actions (ACTION[:STEP], ...), found more",
+                                   keyname, VFP_MAX_CYCLE - 1);
+        char *colon = strchr(item, ':');
+        double step = DEFAULT_CYCLE_STEP;
+        if (colon) {
+            *colon = '\0';
+            char *end;
+            errno = 0;
+            step = strtod(trim(colon + 1), &end);
+            if (*end || errno || !isfinite(step) || step == 0 || fabs(step) > 1e6 || end == trim(colon + 1))
+                return vfpi_board_fail(p, p->line, "%s: expected ACTION[:STEP] with a non-zero STEP, found '%.60s:%.60s'",
+                                       keyname, trim(item), colon + 1);
+        }
+        vfp_action_t a;
+        if (parse_action(p, trim(item), 1, &a))
+            return VFP_ERR;
+        k->cycle[k->cycle_count] = a;
+        k->cycle_step[k->cycle_count++] = step;
+    }
+    if (k->cycle_count == 1)
+        return vfpi_board_fail(p, p->line, "%s: expected ACTION[:STEP], ... (knob actions: %s), found nothing", keyname,
+                               KNOB_ACTIONS);
+    return VFP_OK;
+}
+
 static vfp_status_t parse_line_offset(vfpi_board_parser_t *p, const char *keyname, const char *value, int *out)
 {
     long n;
@@ -337,6 +376,8 @@ static vfp_status_t set_knob(vfpi_board_parser_t *p, int n, int key, const char 
         return parse_pull(p, keyname, value, &k->pull);
     case KN_ACTION:
         return parse_action(p, value, 1, &k->action);
+    case KN_CYCLE:
+        return parse_cycle(p, keyname, value, k);
     case KN_STEP: {
         char *end;
         errno = 0;

@@ -14,10 +14,13 @@
  *     knob.0.a = 17                  # line offsets on that chip
  *     knob.0.b = 27
  *     knob.0.pull = up               # up, down or none
- *     knob.0.action = azimuth        # azimuth, elevation, roll, zoom, level, width
+ *     knob.0.action = azimuth        # azimuth, elevation, roll, zoom, level, width, light-azimuth,
+ *                                    # light-elevation, shade, preset
  *     knob.0.step = 5                # per detent: degrees, percent of zoom, or percent of the window
+ *     knob.0.cycle = light-azimuth:10, level:2   # more actions (and their steps) a cycle-knobs button moves
+ *                                    # the knob on to, in turn, and back to its action
  *     button.0.line = 22
- *     button.0.action = next-preset  # next-preset, next-mode, reset, overlay, quit
+ *     button.0.action = next-preset  # next-preset, next-mode, reset, overlay, quit, toggle-shade, cycle-knobs
  *
  * All keys are listed in boards/README.md. An error names the file and line and says what was expected:
  * "boards/x.board:7: unknown action 'spin' (expected azimuth, elevation, roll, zoom, level or width)".
@@ -32,6 +35,7 @@
 #include "volfix.h"
 
 #define VFP_MAX_KNOBS 8
+#define VFP_MAX_CYCLE 6 /* a knob's actions: its action and up to five more in knob.N.cycle */
 #define VFP_MAX_BUTTONS 8
 #define VFP_PATH_LEN 256
 
@@ -43,11 +47,17 @@ typedef enum vfp_action {
     VFP_ACT_ZOOM,        /* knob: zoom in and out */
     VFP_ACT_LEVEL,       /* knob: move the window's centre (CT level), moving the transfer function */
     VFP_ACT_WIDTH,       /* knob: widen and narrow the window (CT width) */
+    VFP_ACT_LIGHT_AZIMUTH,   /* knob: move the (first) light about the viewer's vertical axis */
+    VFP_ACT_LIGHT_ELEVATION, /* knob: move it up and down */
+    VFP_ACT_SHADE,       /* knob: shading on (turned clockwise) or off (counter-clockwise) */
+    VFP_ACT_PRESET,      /* knob: the next transfer-function preset (clockwise) or the one before */
     VFP_ACT_NEXT_PRESET, /* button: cycle the transfer-function presets */
     VFP_ACT_NEXT_MODE,   /* button: cycle the rendering modes */
     VFP_ACT_RESET,       /* button: back to the first view and window */
     VFP_ACT_OVERLAY,     /* button: show or hide the frame-time overlay */
     VFP_ACT_QUIT,        /* button: leave */
+    VFP_ACT_TOGGLE_SHADE, /* button: shading on or off */
+    VFP_ACT_CYCLE_KNOBS, /* button: every knob with a knob.N.cycle list takes its next action */
     VFP_ACT_COUNT
 } vfp_action_t;
 
@@ -58,6 +68,11 @@ typedef struct vfp_knob {
     vfp_pull_t pull;
     vfp_action_t action;
     double step;              /* per detent, in the action's unit (default: 5) */
+    /* What a cycle-knobs button moves the knob through: cycle[0] is action and step, then knob.N.cycle's;
+     * cycle_count 1 when the knob has no cycle */
+    int cycle_count;
+    vfp_action_t cycle[VFP_MAX_CYCLE];
+    double cycle_step[VFP_MAX_CYCLE];
     char device[VFP_PATH_LEN]; /* evdev: the rotary-encoder device */
     int axis;                 /* evdev: REL_X (0) by default, or REL_DIAL (7), REL_WHEEL (8) */
     int key_up, key_down;     /* sdl: SDL key codes that turn it one detent each way */

@@ -86,6 +86,10 @@ vfp_status_t vfpi_board_finish(vfpi_board_parser_t *p)
         if (!p->knob_line[i][KN_ACTION])
             return vfpi_board_fail(p, p->knob_first[i],
                                    "knob.%d has no action (expected knob.%d.action = " KNOB_ACTIONS ")", i, i);
+        if (!p->knob_line[i][KN_CYCLE])
+            k->cycle_count = 1;
+        k->cycle[0] = k->action;
+        k->cycle_step[0] = k->step;
     }
     for (int i = 0; i < b->button_count; i++) {
         vfp_button_t *btn = &b->buttons[i];

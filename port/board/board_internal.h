@@ -19,9 +19,9 @@
 
 /* Actions by kind, and how messages list them (board_names.c holds the names in vfp_action_t's order). */
 #define FIRST_KNOB_ACTION VFP_ACT_AZIMUTH
-#define LAST_KNOB_ACTION VFP_ACT_WIDTH
-#define KNOB_ACTIONS "azimuth, elevation, roll, zoom, level or width"
-#define BUTTON_ACTIONS "next-preset, next-mode, reset, overlay or quit"
+#define LAST_KNOB_ACTION VFP_ACT_PRESET
+#define KNOB_ACTIONS "azimuth, elevation, roll, zoom, level, width, light-azimuth, light-elevation, shade or preset"
+#define BUTTON_ACTIONS "next-preset, next-mode, reset, overlay, quit, toggle-shade or cycle-knobs"
 
 /* What vfpi_board_sdl_key() takes, for messages. */
 #define SDL_KEY_NAMES \
@@ -31,7 +31,8 @@
 /* The keys, one enum per scope; a key's line is remembered for duplicates and for later checks. */
 enum top_key { T_NAME, T_DISPLAY, T_DEVICE, T_WIDTH, T_HEIGHT, T_FORMAT, T_ROTATION, T_INPUT, T_SCRIPT, T_CHIP,
                T_THREADS, T_IDLE, T_OVERLAY, T_COUNT };
-enum knob_key { KN_A, KN_B, KN_PULL, KN_ACTION, KN_STEP, KN_DEVICE, KN_AXIS, KN_KEY_UP, KN_KEY_DOWN, KN_COUNT };
+enum knob_key { KN_A, KN_B, KN_PULL, KN_ACTION, KN_STEP, KN_DEVICE, KN_AXIS, KN_KEY_UP, KN_KEY_DOWN, KN_CYCLE,
+                KN_COUNT };
 enum button_key { BT_LINE, BT_PULL, BT_ACTIVE_LOW, BT_DEBOUNCE, BT_ACTION, BT_DEVICE, BT_CODE, BT_COUNT };
 
 typedef struct vfpi_board_parser {

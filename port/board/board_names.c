@@ -53,7 +53,8 @@ static const name_value_t booleans[] = {{"1", 1}, {"0", 0}, {"yes", 1}, {"no", 0
 
 static const char *const action_names[VFP_ACT_COUNT] = {
     "none", "azimuth", "elevation", "roll", "zoom", "level", "width",
-    "next-preset", "next-mode", "reset", "overlay", "quit",
+    "light-azimuth", "light-elevation", "shade", "preset",
+    "next-preset", "next-mode", "reset", "overlay", "quit", "toggle-shade", "cycle-knobs",
 };
 
 static const name_value_t rel_axes[] = {CODE(REL_X), CODE(REL_Y), CODE(REL_Z), CODE(REL_HWHEEL), CODE(REL_DIAL),

@@ -2,7 +2,8 @@
  * controls.h: what the knobs and buttons control, and how an input event changes it. The viewer holds one
  * vfp_controls_t; the board file says which knob or button does what (board.h). Pure functions, tested alone.
  *
- * Units: angles in degrees (kept in [0, 360)), zoom as a factor (1 fits the volume's bounding sphere), the
+ * Units: angles in degrees (the view's kept in [0, 360); the light's azimuth in [-180, 180) and its elevation
+ * in [-90, 90], relative to the viewer as --light takes them), zoom as a factor (1 fits the volume's bounding sphere), the
  * transfer function's shift in windows and its scale as a factor (vfp_tf_move in tf.h).
  */
 #ifndef VFP_CONTROLS_H
@@ -25,6 +26,10 @@ typedef struct vfp_controls {
     int preset;       /* which transfer function, 0 .. preset_count - 1 */
     int preset_count; /* how many the button cycles through */
     vf_mode_t mode;
+    double light_azimuth, light_elevation; /* the first light, relative to the viewer (volfix --light AZ,EL) */
+    int shade;        /* -1: each transfer function as it says; 0 off; 1 on (the shade knob or button) */
+    int shade_now;    /* whether the frame shown is shaded: the viewer keeps it, the shade button turns it over */
+    int knob_at[VFP_MAX_KNOBS]; /* which of its board cycle's actions each knob does now (0: knob.N.action) */
     int overlay;      /* the frame-time overlay is shown */
     int quit;
 } vfp_controls_t;
@@ -36,7 +41,13 @@ enum {
     VFP_CHANGED_MODE = 4,    /* the rendering mode: a new renderer */
     VFP_CHANGED_OVERLAY = 8, /* the overlay: the same picture, redrawn */
     VFP_CHANGED_QUIT = 16,
+    VFP_CHANGED_LIGHT = 32,  /* the light or shading: relight (a new renderer when shading turns a renderer's
+                              * lighting on or off), then a new frame */
+    VFP_CHANGED_KNOBS = 64,  /* what the knobs do (cycle-knobs): the overlay says it */
 };
+
+/* The action knob n does now, and its step (its board cycle at c->knob_at[n]). */
+vfp_action_t vfp_controls_knob_action(const vfp_controls_t *c, const vfp_board_t *board, int n, double *step);
 
 /* Apply one event. `home` is where the reset button goes back to (the view and transfer function the viewer
  * started with; the preset and mode stay). Returns the VFP_CHANGED_ bits. */

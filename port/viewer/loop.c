@@ -128,10 +128,12 @@ static void log_frame(loop_t *L, int full, double ms, double present_ms, double 
     long rss_kb, peak_kb;
     memory_kb(&rss_kb, &peak_kb);
     fprintf(v->log, " rss %ld KB peak %ld KB", rss_kb, peak_kb);
-    char lighting[256]; /* the transfer function's lighting, as volfix-sim's options give it */
+    char lighting[256]; /* the frame's lighting (the transfer function's, the light and shade controls'), as
+                         * volfix-sim's options give it */
     vf_params_t p = s->params;
-    p.lighting = s->lit[c->preset] != 0;
-    vfp_lighting_args(&p, &s->lighting[c->preset], lighting, sizeof lighting);
+    vf_lighting_t l;
+    p.lighting = viewer_lighting(s, c, &l) != 0;
+    vfp_lighting_args(&p, &l, lighting, sizeof lighting);
     fprintf(v->log, ": --view %.17g,%.17g,%.17g --zoom %.17g --tf-move %.17g,%.17g %s --mode %s%s --window %.17g,%.17g "
                     "--size %ux%u --format %s",
             c->azimuth, c->elevation, wrap360(c->roll - v->board.rotation), c->zoom, c->tf_shift, c->tf_scale,
@@ -193,6 +195,17 @@ static vfp_status_t present(loop_t *L, int full, double ms)
                  v->scene.tfs[v->controls.preset].name);
         vfp_overlay_text(&L->frame, rot, 2 * scale, 2 * scale, scale, line1);
         vfp_overlay_text(&L->frame, rot, 2 * scale, 2 * scale + vfp_overlay_height(scale), scale, line2);
+        /* on a board whose knobs cycle, what they do now */
+        char line3[96] = "";
+        size_t at = 0;
+        for (int n = 0; n < v->board.knob_count && at < sizeof line3; n++)
+            if (v->board.knobs[n].cycle_count > 1) {
+                double step;
+                at += (size_t)snprintf(line3 + at, sizeof line3 - at, "%s%d %s", at ? " " : "KNOB ", n,
+                                       vfp_action_name(vfp_controls_knob_action(&v->controls, &v->board, n, &step)));
+            }
+        if (line3[0])
+            vfp_overlay_text(&L->frame, rot, 2 * scale, 2 * scale + 2 * vfp_overlay_height(scale), scale, line3);
         if (v->scene.full.oriented) { /* the patient's directions, when the file gave them */
             const double view[3] = {v->controls.azimuth, v->controls.elevation, v->controls.roll};
             char right[4], left[4], top[4], bottom[4];
@@ -311,17 +324,22 @@ static void apply_events(loop_t *L, const vfp_event_t *ev, int n)
     viewer_t *v = L->v;
     for (int i = 0; i < n; i++) {
         unsigned changed = vfp_controls_apply(&v->controls, &v->home, &v->board, &ev[i]);
+        vf_lighting_t lighting;
+        viewer_lighting(&v->scene, &v->controls, &lighting);
+        v->controls.shade_now = lighting.shade; /* what the next shade button press turns over */
         if (changed & VFP_CHANGED_QUIT) {
             L->quitting = 1;
             continue;
         }
         if (!changed)
             continue;
-        if (changed & (VFP_CHANGED_VIEW | VFP_CHANGED_TF | VFP_CHANGED_MODE)) {
+        if (changed & (VFP_CHANGED_VIEW | VFP_CHANGED_TF | VFP_CHANGED_MODE | VFP_CHANGED_LIGHT)) {
             L->gen++;
             atomic_store(&L->worker.latest, L->gen);
             L->need_fast = 1;
         }
+        if (changed == VFP_CHANGED_KNOBS && !v->controls.overlay)
+            continue; /* what the knobs do shows on the overlay only */
         L->need_redraw = 1; /* the overlay alone, or with the rest */
         L->last_input = now_ns();
         if (L->npending < MAX_PENDING)

@@ -299,6 +299,13 @@ static vfp_status_t setup(viewer_t *v, const options_t *o, char *err, size_t err
     c->preset = first;
     c->preset_count = s->tf_count;
     c->mode = o->mode;
+    /* the light knobs move the first light, from where --light put it (the headlight by default) */
+    c->light_azimuth = o->lighting.light_count ? o->lighting.light[0][0] : 0;
+    c->light_elevation = o->lighting.light_count ? o->lighting.light[0][1] : 0;
+    c->shade = -1;
+    vf_lighting_t lighting;
+    viewer_lighting(s, c, &lighting);
+    c->shade_now = lighting.shade;
     c->overlay = b->overlay;
     v->home = *c;
     if (o->log && !(v->log = fopen(o->log, "w"))) {

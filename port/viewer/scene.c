@@ -11,10 +11,32 @@ void viewer_renderer_close(viewer_renderer_t *vr)
     vr->open = 0;
 }
 
+int viewer_lighting(const viewer_scene_t *scene, const vfp_controls_t *c, vf_lighting_t *l)
+{
+    *l = scene->lighting[c->preset];
+    if (c->shade >= 0)
+        l->shade = c->shade != 0;
+    l->lights[0] = (vf_light_t){vfp_degrees_to_bau(c->light_azimuth), vfp_degrees_to_bau(c->light_elevation)};
+    return l->shade || l->gradient_hi > l->gradient_lo;
+}
+
+static int same_lighting(const vf_lighting_t *a, const vf_lighting_t *b)
+{
+    if (a->shade != b->shade || a->light_count != b->light_count || a->ka != b->ka || a->kd != b->kd ||
+        a->ks != b->ks || a->shininess != b->shininess || a->gradient_lo != b->gradient_lo ||
+        a->gradient_hi != b->gradient_hi)
+        return 0;
+    for (uint32_t k = 0; k < a->light_count && k < VF_MAX_LIGHTS; k++)
+        if (a->lights[k].azimuth != b->lights[k].azimuth || a->lights[k].elevation != b->lights[k].elevation)
+            return 0;
+    return 1;
+}
+
 vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_volume_t *volume,
                          const vfp_controls_t *c, char *err, size_t errlen)
 {
-    const int lit = scene->lit[c->preset];
+    vf_lighting_t lighting;
+    const int lit = viewer_lighting(scene, c, &lighting);
     if (vr->open && (vr->volume != volume || vr->mode != c->mode || vr->lit != lit))
         viewer_renderer_close(vr);
     int fresh = !vr->open;
@@ -39,6 +61,7 @@ vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, con
             return VFP_ERR;
         }
     }
+    int relight = lit && !same_lighting(&vr->lighting, &lighting);
     if (fresh || vr->preset != c->preset || vr->tf_shift != c->tf_shift || vr->tf_scale != c->tf_scale) {
         vfp_tf_t tf = scene->tfs[c->preset];
         vfp_tf_move(&tf, &scene->full, scene->window, c->tf_shift, c->tf_scale);
@@ -48,16 +71,20 @@ vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, con
             viewer_renderer_close(vr); /* half applied: start again next time */
             return VFP_ERR;
         }
-        /* after the transfer function: a renderer made again for longer run lists starts with the default lighting */
-        vf_status_t ls = lit ? vf_renderer_set_lighting(vr->r.core, &scene->lighting[c->preset]) : VF_OK;
+        vr->preset = c->preset;
+        vr->tf_shift = c->tf_shift;
+        vr->tf_scale = c->tf_scale;
+        relight = lit; /* after the transfer function: a renderer made again for longer run lists starts with the
+                        * default lighting */
+    }
+    if (relight) {
+        vf_status_t ls = vf_renderer_set_lighting(vr->r.core, &lighting);
         if (ls != VF_OK) {
             snprintf(err, errlen, "cannot light the frames: %s", vf_status_text(ls));
             viewer_renderer_close(vr);
             return VFP_ERR;
         }
-        vr->preset = c->preset;
-        vr->tf_shift = c->tf_shift;
-        vr->tf_scale = c->tf_scale;
+        vr->lighting = lighting;
     }
     return VFP_OK;
 }

@@ -56,13 +56,19 @@ typedef struct viewer_renderer {
     const vfp_volume_t *volume;
     vf_mode_t mode;
     int lit;                 /* made with params.lighting (for a lit transfer function) */
+    vf_lighting_t lighting;  /* set last (when lit) */
     int preset;
     double tf_shift, tf_scale;
 } viewer_renderer_t;
 
-/* Bring vr up to date with c: a new renderer for a new mode or when the transfer function's lighting is turned on
- * or off (a lit renderer keeps normals, which cost memory), a reclassification and its lighting for a new transfer
- * function. Returns VFP_OK, or VFP_ERR with err. */
+/* The lighting of c's frames: the transfer function's (the options' and its file's), shaded as c->shade says
+ * (-1: as the transfer function says) and lit by c's light as the first light. Returns whether frames are lit
+ * at all (shaded, or a gradient-opacity ramp): a renderer made with params.lighting. */
+int viewer_lighting(const viewer_scene_t *scene, const vfp_controls_t *c, vf_lighting_t *lighting);
+
+/* Bring vr up to date with c: a new renderer for a new mode or when the lighting is turned on or off (a lit
+ * renderer keeps normals, which cost memory), a reclassification for a new transfer function, and the lighting
+ * set again after it or when it changed. Returns VFP_OK, or VFP_ERR with err. */
 vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, const vfp_volume_t *volume,
                          const vfp_controls_t *c, char *err, size_t errlen);
 /* Render a frame of c into image (after viewer_sync). */

@@ -11,6 +11,7 @@
 #include <stdio.h>
 
 #include "frame.h"
+#include "scene_fixture.h"
 #include "volfix.h"
 
 #define NX 21
@@ -23,18 +24,16 @@ static unsigned char pixels[48 * 40 * 4];
 
 static const vf_volume_t volume = {{NX, NY, NZ}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
 
-/* Two nested balls with noise, visible up to the box at one corner (where partial slabs would differ). */
+/* Two nested balls, visible up to the box at one corner (where partial slabs would differ). */
+static int nested_balls(int x, int y, int z)
+{
+    int d2 = (x - 10) * (x - 10) + (y - 8) * (y - 8) + (z - 6) * (z - 6);
+    return d2 <= 9 ? 220 : d2 <= 30 ? 140 : x + y < 6 ? 180 : 30;
+}
+
 static void fill_volume(void)
 {
-    uint32_t seed = 777;
-    for (uint32_t z = 0; z < NZ; z++)
-        for (uint32_t y = 0; y < NY; y++)
-            for (uint32_t x = 0; x < NX; x++) {
-                seed = seed * 1103515245u + 12345u;
-                int d2 = ((int)x - 10) * ((int)x - 10) + ((int)y - 8) * ((int)y - 8) + ((int)z - 6) * ((int)z - 6);
-                int v = d2 <= 9 ? 220 : d2 <= 30 ? 140 : x + y < 6 ? 180 : 30;
-                vox[(z * NY + y) * NX + x] = (uint8_t)(v + (seed >> 28));
-            }
+    scene_fill_shape(vox, volume.dims, nested_balls, 777, 4);
 }
 
 static const vf_tf_point_t tf_pts[4] = {
@@ -51,13 +50,7 @@ static uint64_t fnv1a(const unsigned char *p, size_t n)
 
 static vf_status_t create(const vf_params_t *p, vf_arena_t *arena, vf_renderer_t **r)
 {
-    vf_arena_init(arena, arena_buf, sizeof arena_buf);
-    vf_status_t s = vf_renderer_create(r, p, &volume, arena);
-    if (s == VF_OK)
-        s = vf_renderer_set_window(*r, (vf_window_t){0, 255});
-    if (s == VF_OK)
-        s = vf_renderer_set_tf(*r, &tf);
-    return s;
+    return scene_renderer(r, arena, arena_buf, sizeof arena_buf, p, &volume, &tf);
 }
 
 /* A frame of renderer r and its hash, else 0. */

@@ -194,8 +194,7 @@ static void null_buffer(void)
     CHECK(vfi_arena_alloc(&a, 1) == NULL);
 }
 
-CHECK_CASES({"alignment", alignment}, {"block_size", block_size}, {"exact_fit", exact_fit},
-            {"out_of_space_keeps_cursor", out_of_space_keeps_cursor}, {"rewind_and_peak", rewind_and_peak},
-            {"fault_injection", fault_injection}, {"misaligned_buffer", misaligned_buffer},
-            {"null_buffer", null_buffer});
+CHECK_CASES(CHECK_CASE(alignment), CHECK_CASE(block_size), CHECK_CASE(exact_fit), CHECK_CASE(out_of_space_keeps_cursor),
+            CHECK_CASE(rewind_and_peak), CHECK_CASE(fault_injection), CHECK_CASE(misaligned_buffer),
+            CHECK_CASE(null_buffer));
 CHECK_RUN("core/arena")

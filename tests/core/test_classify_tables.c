@@ -28,22 +28,11 @@
 #include "classify.h"
 #include "table_store.h"
 #include "tables.h"
+#include "tables_spec.h"
 
 static uint64_t rng_state = 0xB7E151628AED2A6Bu;
-static uint64_t rnd64(void)
-{
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return rng_state * 0x2545F4914F6CDD1Du;
-}
-static uint32_t rnd(uint32_t n)
-{
-    return (uint32_t)(rnd64() % n);
-}
 
-/* Room for classification, scratch and tables of up to 1024 entries (the 2D table: 8 MiB). */
-static _Alignas(16) unsigned char arena_buf[1 << 18];
+/* Tables of up to 1024 entries (the 2D table: 8 MiB). */
 static uint16_t table2d[1024 * 1024 * 4];
 static uint16_t table1d[1024 * 4];
 
@@ -53,64 +42,7 @@ static vfi_table_out_t q15_out(uint16_t *table)
     return out;
 }
 
-typedef struct fixture {
-    vf_arena_t arena;
-    vfi_classify_t cls;
-    vfi_table_scratch_t scratch;
-} fixture_t;
-
-static int fixture_init(fixture_t *fx, uint32_t n)
-{
-    vf_arena_init(&fx->arena, arena_buf, sizeof arena_buf);
-    if (vfi_classify_alloc(&fx->cls, n, VF_LOOKUP_NEAREST, &fx->arena) != VF_OK)
-        return 0;
-    return vfi_table_scratch_alloc(&fx->scratch, n, &fx->arena) == VF_OK;
-}
-
 /* ---- the spec in double ------------------------------------------------------------------------------ */
-
-static double channel(const vf_tf_point_t *p, int c)
-{
-    return (c == 0 ? p->r : c == 1 ? p->g : c == 2 ? p->b : p->a) / 65535.0;
-}
-
-/* Channel c of the transfer function at entry i's scalar s_i = i 255 / (N - 1). Which segment s_i falls in is
- * decided exactly (Q8.8 scalars times N - 1 against i 65280); the interpolation is double. */
-static double tf_at_entry(const vf_tf_t *tf, uint32_t i, uint32_t n, int c)
-{
-    const vf_tf_point_t *pts = tf->points;
-    uint64_t num = (uint64_t)i * 65280, den = n - 1;
-    int64_t p = -1;
-    while (p + 1 < (int64_t)tf->count && (uint64_t)pts[p + 1].scalar_q8 * den <= num)
-        p++;
-    if (p < 0)
-        return channel(&pts[0], c);
-    if (p + 1 == (int64_t)tf->count)
-        return channel(&pts[p], c);
-    double s = (double)num / (double)den; /* Q8.8 units */
-    double w = (s - pts[p].scalar_q8) / (pts[p + 1].scalar_q8 - pts[p].scalar_q8);
-    return channel(&pts[p], c) + w * (channel(&pts[p + 1], c) - channel(&pts[p], c));
-}
-
-typedef struct spec {
-    uint32_t n;
-    double a0[1024], tau[1024], col[1024][3];
-} spec_t;
-
-static spec_t spec;
-
-static void spec_classify(const vf_tf_t *tf, uint32_t n)
-{
-    spec.n = n;
-    for (uint32_t i = 0; i < n; i++) {
-        double a0 = tf_at_entry(tf, i, n, 3);
-        spec.a0[i] = a0;
-        a0 = fmin(a0, 1 - 1.0 / 65536);
-        spec.tau[i] = -log1p(-a0);
-        for (int c = 0; c < 3; c++)
-            spec.col[i][c] = tf_at_entry(tf, i, n, c);
-    }
-}
 
 static void spec_point(uint32_t i, double d, double out[4])
 {
@@ -151,26 +83,9 @@ static void spec_preint(uint32_t f, uint32_t b, double d, double out[4])
 
 static vf_tf_point_t pts_buf[VF_MAX_TF_POINTS + 2];
 
-/* A random transfer function: 1..8 points, sometimes sharing a scalar (a step), opacity often exactly zero (so
- * that invisible ranges exist), sometimes 65535 (the clamp), sometimes points outside the used range. */
 static vf_tf_t random_tf(void)
 {
-    uint32_t count = 1 + rnd(8);
-    uint32_t s = rnd(40000);
-    for (uint32_t p = 0; p < count; p++) {
-        if (p > 0 && rnd(4) != 0)
-            s += rnd(30000);
-        if (s > 65280)
-            s = 65280;
-        pts_buf[p].scalar_q8 = (uint16_t)s;
-        pts_buf[p].r = (uint16_t)rnd(65536);
-        pts_buf[p].g = (uint16_t)rnd(65536);
-        pts_buf[p].b = (uint16_t)rnd(65536);
-        uint32_t k = rnd(6);
-        pts_buf[p].a = (uint16_t)(k < 2 ? 0 : k == 2 ? 65535 : k == 3 ? rnd(64) : rnd(65536));
-    }
-    vf_tf_t tf = {pts_buf, count};
-    return tf;
+    return spec_random_tf(pts_buf, false, check_mod, &rng_state);
 }
 
 /* ---- classification ---------------------------------------------------------------------------------- */
@@ -237,7 +152,7 @@ static void classify_random(void)
     const uint32_t sizes[] = {2, 3, 16, 64, 255, 256, 257, 1000, 1024};
     for (size_t sn = 0; sn < sizeof sizes / sizeof sizes[0]; sn++) {
         fixture_t fx;
-        CHECK(fixture_init(&fx, sizes[sn]));
+        CHECK(fixture_init(&fx, sizes[sn], false));
         for (int t = 0; t < 40; t++) {
             vf_tf_t tf = random_tf();
             CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -251,7 +166,7 @@ static void classify_random(void)
 static void classify_special(void)
 {
     fixture_t fx;
-    CHECK(fixture_init(&fx, 256));
+    CHECK(fixture_init(&fx, 256, false));
     /* a single point: constant everywhere */
     vf_tf_point_t one = {30000, 65535, 32768, 0, 20000};
     vf_tf_t tf = {&one, 1};
@@ -314,7 +229,7 @@ static void classify_special(void)
 static void classify_bad_keeps_previous(void)
 {
     fixture_t fx;
-    CHECK(fixture_init(&fx, 256));
+    CHECK(fixture_init(&fx, 256, false));
     vf_tf_t good = random_tf();
     for (uint32_t p = 0; p < good.count; p++)
         pts_buf[p].a = 30000;
@@ -395,7 +310,7 @@ static void entry_of_sample_exact(void)
         memset(&cls, 0, sizeof cls);
         cls.n = n;
         for (int t = 0; t < 200000; t++) {
-            uint64_t s = rnd64() % (top + 1);
+            uint64_t s = check_rand64(&rng_state) % (top + 1);
             CHECK_MSG(vfi_entry_of_sample(&cls, s) == exact_entry(s, n), "N %u sample %llu", n,
                       (unsigned long long)s);
         }
@@ -428,7 +343,7 @@ static void entry_of_scalar_table(void)
     const uint32_t sizes[] = {2, 3, 64, 255, 256, 257, 1000, 1024};
     for (size_t sn = 0; sn < sizeof sizes / sizeof sizes[0]; sn++) {
         fixture_t fx;
-        CHECK(fixture_init(&fx, sizes[sn]));
+        CHECK(fixture_init(&fx, sizes[sn], false));
         for (uint64_t v = 0; v < 256; v++) {
             CHECK_EQ(fx.cls.entry_of_scalar[v], exact_entry(v << 32, sizes[sn]));
             CHECK_EQ(fx.cls.entry_of_scalar[v], vfi_entry_of_sample(&fx.cls, v << 32));
@@ -504,7 +419,7 @@ static void tables_random(void)
     int worst = 0;
     for (size_t sn = 0; sn < sizeof sizes / sizeof sizes[0]; sn++) {
         fixture_t fx;
-        CHECK(fixture_init(&fx, sizes[sn]));
+        CHECK(fixture_init(&fx, sizes[sn], false));
         for (int t = 0; t < 12; t++) {
             vf_tf_t tf = random_tf();
             CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -525,7 +440,7 @@ static void tables_full_size(void)
     const uint32_t sizes[] = {256, 300};
     for (size_t sn = 0; sn < sizeof sizes / sizeof sizes[0]; sn++) {
         fixture_t fx;
-        CHECK(fixture_init(&fx, sizes[sn]));
+        CHECK(fixture_init(&fx, sizes[sn], false));
         for (int t = 0; t < 2; t++) {
             vf_tf_t tf = random_tf();
             CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -542,7 +457,7 @@ static void tables_constant_tf(void)
     const uint16_t alphas[] = {1, 300, 20000, 65535};
     for (size_t an = 0; an < 4; an++) {
         fixture_t fx;
-        CHECK(fixture_init(&fx, 256));
+        CHECK(fixture_init(&fx, 256, false));
         vf_tf_point_t p = {1234, 50000, 20000, 65535, alphas[an]};
         vf_tf_t tf = {&p, 1};
         CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -559,7 +474,7 @@ static void tables_constant_tf(void)
 static void tables_invisible(void)
 {
     fixture_t fx;
-    CHECK(fixture_init(&fx, 64));
+    CHECK(fixture_init(&fx, 64, false));
     vf_tf_point_t zero = {0, 65535, 65535, 65535, 0};
     vf_tf_t tf = {&zero, 1};
     CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -614,7 +529,7 @@ static void tables_incremental(void)
     for (size_t sn = 0; sn < sizeof sizes / sizeof sizes[0]; sn++) {
         uint32_t n = sizes[sn];
         fixture_t fx;
-        CHECK(fixture_init(&fx, n));
+        CHECK(fixture_init(&fx, n, false));
         for (int t = 0; t < (n == 256 ? 2 : 10); t++) {
             vf_tf_t tf = random_tf();
             const bool grey = t % 2 == 1;
@@ -665,7 +580,7 @@ static void tables_8bit(void)
     for (size_t sn = 0; sn < sizeof sizes / sizeof sizes[0]; sn++) {
         uint32_t n = sizes[sn];
         fixture_t fx;
-        CHECK(fixture_init(&fx, n));
+        CHECK(fixture_init(&fx, n, false));
         for (int t = 0; t < 4; t++) {
             vf_tf_t tf = random_tf();
             CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -714,7 +629,7 @@ static void tables_incremental_formats(void)
     for (size_t sn = 0; sn < sizeof sizes / sizeof sizes[0]; sn++) {
         uint32_t n = sizes[sn];
         fixture_t fx;
-        CHECK(fixture_init(&fx, n));
+        CHECK(fixture_init(&fx, n, false));
         for (int t = 0; t < 8; t++) {
             vf_tf_t tf = random_tf();
             CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -769,7 +684,7 @@ static void tables_no_clamp(void)
     CHECK_EQ(vfi_q30_to_grid(top, 12), VFI_ONE_Q15);
 
     fixture_t fx;
-    CHECK(fixture_init(&fx, 1024));
+    CHECK(fixture_init(&fx, 1024, false));
     vf_tf_point_t white = {0, 65535, 65535, 65535, 65535};
     vf_tf_t tf = {&white, 1};
     CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -909,13 +824,10 @@ static void table_api_arguments(void)
     CHECK_EQ(arena.used, 0);
 }
 
-CHECK_CASES({"table_api_arguments", table_api_arguments}, {"classify_random", classify_random},
-            {"classify_special", classify_special},
-            {"classify_bad_keeps_previous", classify_bad_keeps_previous},
-            {"entry_of_sample_exact", entry_of_sample_exact}, {"entry_of_scalar_table", entry_of_scalar_table},
-            {"tables_random", tables_random}, {"tables_full_size", tables_full_size},
-            {"tables_constant_tf", tables_constant_tf}, {"tables_invisible", tables_invisible},
-            {"tables_incremental", tables_incremental}, {"tables_8bit", tables_8bit},
-            {"tables_incremental_formats", tables_incremental_formats}, {"tables_no_clamp", tables_no_clamp},
-            {"scalar_entry_ranges", scalar_entry_ranges}, {"correction_lut", correction_lut});
+CHECK_CASES(CHECK_CASE(table_api_arguments), CHECK_CASE(classify_random), CHECK_CASE(classify_special),
+            CHECK_CASE(classify_bad_keeps_previous), CHECK_CASE(entry_of_sample_exact),
+            CHECK_CASE(entry_of_scalar_table), CHECK_CASE(tables_random), CHECK_CASE(tables_full_size),
+            CHECK_CASE(tables_constant_tf), CHECK_CASE(tables_invisible), CHECK_CASE(tables_incremental),
+            CHECK_CASE(tables_8bit), CHECK_CASE(tables_incremental_formats), CHECK_CASE(tables_no_clamp),
+            CHECK_CASE(scalar_entry_ranges), CHECK_CASE(correction_lut));
 CHECK_RUN("core/classify_tables")

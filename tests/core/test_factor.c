@@ -19,10 +19,7 @@
 static uint64_t rng_state = 0x243F6A8885A308D3u;
 static uint64_t rnd64(void)
 {
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return rng_state * 0x2545F4914F6CDD1Du;
+    return check_rand64(&rng_state);
 }
 
 static const uint8_t dummy_voxel = 0;
@@ -499,8 +496,7 @@ static void argument_checks(void)
     CHECK_EQ(vf_factor(&f, &big, &z, 1, 1), VF_ERR_ARG);
 }
 
-CHECK_CASES({"corners_special_views", corners_special_views}, {"corners_random_views", corners_random_views},
-            {"corners_extreme_zoom", corners_extreme_zoom}, {"principal_axis_ties", principal_axis_ties},
-            {"identity_warp", identity_warp},
-            {"scale_precision", scale_precision}, {"argument_checks", argument_checks});
+CHECK_CASES(CHECK_CASE(corners_special_views), CHECK_CASE(corners_random_views), CHECK_CASE(corners_extreme_zoom),
+            CHECK_CASE(principal_axis_ties), CHECK_CASE(identity_warp), CHECK_CASE(scale_precision),
+            CHECK_CASE(argument_checks));
 CHECK_RUN("core/factor")

@@ -14,6 +14,7 @@
 
 #include "check.h"
 #include "frame.h"
+#include "scene_fixture.h"
 #include "volfix.h"
 #include "volfix_internal.h"
 
@@ -28,17 +29,16 @@ static unsigned char pixels[2][32 * 32 * 3];
 
 static const vf_volume_t volume = {{NX, NY, NZ}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
 
-/* A ball of high values in a low background, with noise. */
+/* A ball of high values in a low background. */
+static int ball(int x, int y, int z)
+{
+    return (x - 4) * (x - 4) + (y - 3) * (y - 3) + (z - 3) * (z - 3) <= 6 ? 200 : 40;
+}
+
+/* The ball with 5 bits of noise. */
 static void fill_volume(void)
 {
-    uint32_t seed = 12345;
-    for (uint32_t z = 0; z < NZ; z++)
-        for (uint32_t y = 0; y < NY; y++)
-            for (uint32_t x = 0; x < NX; x++) {
-                seed = seed * 1103515245u + 12345u;
-                int d2 = ((int)x - 4) * ((int)x - 4) + ((int)y - 3) * ((int)y - 3) + ((int)z - 3) * ((int)z - 3);
-                vox[(z * NY + y) * NX + x] = (uint8_t)((d2 <= 6 ? 200 : 40) + (seed >> 27));
-            }
+    scene_fill_shape(vox, volume.dims, ball, 12345, 5);
 }
 
 static vf_params_t params_of(vf_mode_t mode)
@@ -94,12 +94,29 @@ static void render_reference(vf_mode_t mode, const vf_tf_t *tf, const vf_view_t 
 {
     vf_params_t p = params_of(mode);
     vf_arena_t arena;
-    vf_arena_init(&arena, fresh_buf, sizeof fresh_buf);
-    vf_renderer_t *r = NULL;
+    vf_renderer_t *r;
     vf_image_t im = {out, 32, 32, 96, VF_FORMAT_RGB888};
-    if (vf_renderer_create(&r, &p, &volume, &arena) != VF_OK || vf_renderer_set_window(r, (vf_window_t){0, 255}) ||
-        vf_renderer_set_tf(r, tf) || vf_renderer_draw(r, view, &im, scratch, sizeof scratch))
+    if (scene_renderer(&r, &arena, fresh_buf, sizeof fresh_buf, &p, &volume, tf) ||
+        vf_renderer_draw(r, view, &im, scratch, sizeof scratch))
         check_fail(__FILE__, __LINE__, "reference render failed");
+}
+
+/* Draws r's frame of view into pixels[0] and compares it with the reference picture: false, with the case
+ * failed, when the draw fails or a pixel differs. */
+static bool draws_reference(vf_renderer_t *r, vf_mode_t mode, const vf_tf_t *tf, const vf_view_t *view)
+{
+    vf_image_t im = {pixels[0], 32, 32, 96, VF_FORMAT_RGB888};
+    vf_status_t s = vf_renderer_draw(r, view, &im, scratch, sizeof scratch);
+    if (s != VF_OK) {
+        check_fail(__FILE__, __LINE__, "draw: %s", vf_status_text(s));
+        return false;
+    }
+    render_reference(mode, tf, view, pixels[1]);
+    if (memcmp(pixels[0], pixels[1], sizeof pixels[0]) != 0) {
+        check_fail(__FILE__, __LINE__, "%s: the picture differs from a fresh renderer's", vf_mode_name(mode));
+        return false;
+    }
+    return !check_failed;
 }
 
 /* ---- (a) create ----------------------------------------------------------------------------------- */
@@ -124,10 +141,8 @@ static void create_fault_loop(void)
                 vfi_arena_fail_after(&arena, 0);
                 CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
                 CHECK_EQ(vf_renderer_set_tf(r, &dense), VF_OK);
-                vf_image_t im = {pixels[0], 32, 32, 96, VF_FORMAT_RGB888};
-                CHECK_EQ(vf_renderer_draw(r, &view_z, &im, scratch, sizeof scratch), VF_OK);
-                render_reference(p.mode, &dense, &view_z, pixels[1]);
-                CHECK(memcmp(pixels[0], pixels[1], sizeof pixels[0]) == 0);
+                if (!draws_reference(r, p.mode, &dense, &view_z))
+                    return;
             } else {
                 CHECK_MSG(s == VF_ERR_NOMEM, "fail_after %u: %s", fail, vf_status_text(s));
                 CHECK_MSG(r == NULL, "fail_after %u: *out not NULL after a failure", fail);
@@ -211,11 +226,8 @@ static void set_tf_fault_loop(void)
             int succeeded = 0;
             for (uint32_t extra = 0; extra < 50 && !succeeded; extra++) {
                 vf_arena_t arena;
-                vf_arena_init(&arena, arena_buf, sizeof arena_buf);
-                vf_renderer_t *r = NULL;
-                CHECK_EQ(vf_renderer_create(&r, &p, &volume, &arena), VF_OK);
-                CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
-                CHECK_EQ(vf_renderer_set_tf(r, &sparse), VF_OK);
+                vf_renderer_t *r;
+                CHECK_EQ(scene_renderer(&r, &arena, arena_buf, sizeof arena_buf, &p, &volume, &sparse), VF_OK);
                 CHECK_EQ(begin_frame(r, view, 32, 32, 0, false), VF_OK); /* a frame in progress */
                 vfi_arena_fail_after(&arena, arena.allocs + extra);
                 vf_status_t s = vf_renderer_set_tf(r, &dense);
@@ -255,11 +267,8 @@ static void set_tf_failure_inside_frame(void)
             vf_params_t p = params_of(mode_of(m));
             for (uint32_t extra = 0; extra < 6; extra++) {
                 vf_arena_t arena;
-                vf_arena_init(&arena, arena_buf, sizeof arena_buf);
-                vf_renderer_t *r = NULL;
-                CHECK_EQ(vf_renderer_create(&r, &p, &volume, &arena), VF_OK);
-                CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
-                CHECK_EQ(vf_renderer_set_tf(r, &sparse), VF_OK);
+                vf_renderer_t *r;
+                CHECK_EQ(scene_renderer(&r, &arena, arena_buf, sizeof arena_buf, &p, &volume, &sparse), VF_OK);
                 CHECK_EQ(begin_frame(r, view, 32, 32, 0, false), VF_OK);
                 vfi_arena_fail_after(&arena, arena.allocs + extra);
                 if (vf_renderer_set_tf(r, &dense) == VF_OK)
@@ -319,20 +328,16 @@ static void set_tf_short_arena(void)
             /* (c) the failed renderer recovers: first a transfer function whose runs fit ... */
             s = vf_renderer_set_tf(r, &sparse);
             if (s == VF_OK) {
-                vf_image_t im = {pixels[0], 32, 32, 96, VF_FORMAT_RGB888};
-                CHECK_EQ(vf_renderer_draw(r, &view_z, &im, scratch, sizeof scratch), VF_OK);
-                render_reference(p.mode, &sparse, &view_z, pixels[1]);
-                CHECK(memcmp(pixels[0], pixels[1], sizeof pixels[0]) == 0);
+                if (!draws_reference(r, p.mode, &sparse, &view_z))
+                    return;
             } else {
                 CHECK_EQ(s, VF_ERR_NOMEM);
             }
             /* ... then the dense one again after the caller grows the arena (same buffer, larger size) */
             arena.size = needed;
             CHECK_EQ(vf_renderer_set_tf(r, &dense), VF_OK);
-            vf_image_t im = {pixels[0], 32, 32, 96, VF_FORMAT_RGB888};
-            CHECK_EQ(vf_renderer_draw(r, &view_x, &im, scratch, sizeof scratch), VF_OK);
-            render_reference(p.mode, &dense, &view_x, pixels[1]);
-            CHECK(memcmp(pixels[0], pixels[1], sizeof pixels[0]) == 0);
+            if (!draws_reference(r, p.mode, &dense, &view_x))
+                return;
         }
     }
 }
@@ -355,10 +360,7 @@ static void set_window_short_arena(void)
     CHECK_EQ(in_child(job_render, &job), VF_ERR_STATE);
     arena.size = vf_renderer_needed_bytes(r);
     CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
-    vf_image_t im = {pixels[0], 32, 32, 96, VF_FORMAT_RGB888};
-    CHECK_EQ(vf_renderer_draw(r, &view_x, &im, scratch, sizeof scratch), VF_OK);
-    render_reference(p.mode, &dense, &view_x, pixels[1]);
-    CHECK(memcmp(pixels[0], pixels[1], sizeof pixels[0]) == 0);
+    draws_reference(r, p.mode, &dense, &view_x);
 }
 
 /* Memory reports add up. */
@@ -369,11 +371,8 @@ static void memory_report(void)
     size_t bytes = 0;
     CHECK_EQ(vf_renderer_bytes(&p, &volume, &bytes), VF_OK);
     vf_arena_t arena;
-    vf_arena_init(&arena, arena_buf, sizeof arena_buf);
-    vf_renderer_t *r = NULL;
-    CHECK_EQ(vf_renderer_create(&r, &p, &volume, &arena), VF_OK);
-    CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
-    CHECK_EQ(vf_renderer_set_tf(r, &dense), VF_OK);
+    vf_renderer_t *r;
+    CHECK_EQ(scene_renderer(&r, &arena, arena_buf, sizeof arena_buf, &p, &volume, &dense), VF_OK);
     vf_memory_t mem;
     vf_renderer_memory(r, &mem);
     CHECK_EQ(mem.total, arena.used);
@@ -391,8 +390,7 @@ static void memory_report(void)
     CHECK(arena.peak <= bytes + dense_runs + 16);
 }
 
-CHECK_CASES({"create_fault_loop", create_fault_loop}, {"create_every_size", create_every_size},
-            {"set_tf_fault_loop", set_tf_fault_loop}, {"set_tf_failure_inside_frame", set_tf_failure_inside_frame},
-            {"set_tf_short_arena", set_tf_short_arena}, {"set_window_short_arena", set_window_short_arena},
-            {"memory_report", memory_report});
+CHECK_CASES(CHECK_CASE(create_fault_loop), CHECK_CASE(create_every_size), CHECK_CASE(set_tf_fault_loop),
+            CHECK_CASE(set_tf_failure_inside_frame), CHECK_CASE(set_tf_short_arena), CHECK_CASE(set_window_short_arena),
+            CHECK_CASE(memory_report));
 CHECK_RUN("core/faults")

@@ -23,10 +23,7 @@
 static uint64_t rng_state = 0x9E3779B97F4A7C15u;
 static uint64_t rnd64(void)
 {
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return rng_state * 0x2545F4914F6CDD1Du;
+    return check_rand64(&rng_state);
 }
 
 /* A 64-bit value with a random number of significant bits, so that small and large magnitudes both occur. */
@@ -532,13 +529,10 @@ static void wide_arithmetic(void)
     }
 }
 
-CHECK_CASES({"sincos_all_angles", sincos_all_angles}, {"sincos_header_bound", sincos_header_bound},
-            {"sincos_exact_points", sincos_exact_points},
-            {"sincos_symmetry_and_signs", sincos_symmetry_and_signs}, {"sincos_wraps", sincos_wraps},
-            {"exp_against_libm", exp_against_libm}, {"exp_header_bound", exp_header_bound},
-            {"exp_mean_error", exp_mean_error}, {"exp_ends_and_monotonic", exp_ends_and_monotonic},
-            {"neg_ln_against_libm", neg_ln_against_libm}, {"neg_ln_clamp", neg_ln_clamp},
-            {"sqrt_exhaustive_and_random", sqrt_exhaustive_and_random}, {"udiv_random", udiv_random},
-            {"sdiv_round_random", sdiv_round_random}, {"ratio_random", ratio_random},
-            {"mul_shift_random", mul_shift_random}, {"wide_arithmetic", wide_arithmetic});
+CHECK_CASES(CHECK_CASE(sincos_all_angles), CHECK_CASE(sincos_header_bound), CHECK_CASE(sincos_exact_points),
+            CHECK_CASE(sincos_symmetry_and_signs), CHECK_CASE(sincos_wraps), CHECK_CASE(exp_against_libm),
+            CHECK_CASE(exp_header_bound), CHECK_CASE(exp_mean_error), CHECK_CASE(exp_ends_and_monotonic),
+            CHECK_CASE(neg_ln_against_libm), CHECK_CASE(neg_ln_clamp), CHECK_CASE(sqrt_exhaustive_and_random),
+            CHECK_CASE(udiv_random), CHECK_CASE(sdiv_round_random), CHECK_CASE(ratio_random),
+            CHECK_CASE(mul_shift_random), CHECK_CASE(wide_arithmetic));
 CHECK_RUN("core/fixmath")

@@ -31,6 +31,7 @@
 #include "segment.h"
 #include "table_store.h"
 #include "tables.h"
+#include "tables_spec.h"
 
 static uint64_t rng_state = 0x6A09E667F3BCC908u;
 static uint32_t rnd(uint32_t n)
@@ -45,25 +46,10 @@ static bool show(void)
 
 #define MAX_N 1024
 
-static _Alignas(16) unsigned char arena_buf[1 << 19];
 static _Alignas(16) unsigned char part_buf[7][1 << 17];
 /* main and lit tables of up to 1024 entries, built two ways */
 static uint16_t main_a[MAX_N * MAX_N * 4], lit_a[MAX_N * MAX_N * 4];
 static uint16_t main_b[MAX_N * MAX_N * 4], lit_b[MAX_N * MAX_N * 4];
-
-typedef struct fixture {
-    vf_arena_t arena;
-    vfi_classify_t cls;
-    vfi_table_scratch_t scratch;
-} fixture_t;
-
-static int fixture_init(fixture_t *fx, uint32_t n)
-{
-    vf_arena_init(&fx->arena, arena_buf, sizeof arena_buf);
-    if (vfi_classify_alloc(&fx->cls, n, VF_LOOKUP_NEAREST, &fx->arena) != VF_OK)
-        return 0;
-    return vfi_table_scratch_alloc_lit(&fx->scratch, n, &fx->arena) == VF_OK;
-}
 
 static vfi_table_out_t q15_out(uint16_t *table, uint16_t *lit)
 {
@@ -72,45 +58,6 @@ static vfi_table_out_t q15_out(uint16_t *table, uint16_t *lit)
 }
 
 /* ---- the spec in double ------------------------------------------------------------------------------ */
-
-static double channel(const vf_tf_point_t *p, int c)
-{
-    return (c == 0 ? p->r : c == 1 ? p->g : c == 2 ? p->b : p->a) / 65535.0;
-}
-
-/* Channel c of the transfer function at entry i's scalar (docs/algorithm.md section 1): which segment is decided
- * exactly, the interpolation is double. */
-static double tf_at_entry(const vf_tf_t *tf, uint32_t i, uint32_t n, int c)
-{
-    const vf_tf_point_t *pts = tf->points;
-    uint64_t num = (uint64_t)i * 65280, den = n - 1;
-    int64_t p = -1;
-    while (p + 1 < (int64_t)tf->count && (uint64_t)pts[p + 1].scalar_q8 * den <= num)
-        p++;
-    if (p < 0)
-        return channel(&pts[0], c);
-    if (p + 1 == (int64_t)tf->count)
-        return channel(&pts[p], c);
-    double s = (double)num / (double)den;
-    double w = (s - pts[p].scalar_q8) / (pts[p + 1].scalar_q8 - pts[p].scalar_q8);
-    return channel(&pts[p], c) + w * (channel(&pts[p + 1], c) - channel(&pts[p], c));
-}
-
-static struct {
-    uint32_t n;
-    double tau[MAX_N], col[MAX_N][3];
-} spec;
-
-static void spec_classify(const vf_tf_t *tf, uint32_t n)
-{
-    spec.n = n;
-    for (uint32_t i = 0; i < n; i++) {
-        double a0 = fmin(tf_at_entry(tf, i, n, 3), 1 - 1.0 / 65536);
-        spec.tau[i] = -log1p(-a0);
-        for (int c = 0; c < 3; c++)
-            spec.col[i][c] = tf_at_entry(tf, i, n, c);
-    }
-}
 
 /* t(x): the mean depth of a uniform piece's emission, in piece lengths, from the face it is entered by. */
 static double mean_depth(double x)
@@ -164,27 +111,9 @@ static int lsb_diff(uint16_t got, double want)
 
 static vf_tf_point_t pts_buf[VF_MAX_TF_POINTS];
 
-/* 1..8 points, coloured or grey (r = g = b, the builder's grey blocks), sometimes sharing a scalar (a step),
- * opacity often exactly zero (invisible ranges: the sparse blocks), sometimes 65535 (opaque runs), sometimes
- * tiny. */
 static vf_tf_t random_tf(bool grey)
 {
-    uint32_t count = 1 + rnd(8);
-    uint32_t s = rnd(40000);
-    for (uint32_t p = 0; p < count; p++) {
-        if (p > 0 && rnd(4) != 0)
-            s += rnd(30000);
-        if (s > 65280)
-            s = 65280;
-        pts_buf[p].scalar_q8 = (uint16_t)s;
-        pts_buf[p].r = (uint16_t)rnd(65536);
-        pts_buf[p].g = grey ? pts_buf[p].r : (uint16_t)rnd(65536);
-        pts_buf[p].b = grey ? pts_buf[p].r : (uint16_t)rnd(65536);
-        uint32_t k = rnd(6);
-        pts_buf[p].a = (uint16_t)(k < 2 ? 0 : k == 2 ? 65535 : k == 3 ? rnd(64) : rnd(65536));
-    }
-    vf_tf_t tf = {pts_buf, count};
-    return tf;
+    return spec_random_tf(pts_buf, grey, check_below, &rng_state);
 }
 
 /* ---- alpha t(x) -------------------------------------------------------------------------------------- */
@@ -243,20 +172,17 @@ static int check_lit_tables(fixture_t *fx, const vf_tf_t *tf, double d, bool bru
     d = slab_q16 / 65536.0; /* the spec table is for the same quantised length */
     spec_classify(tf, n);
     static uint16_t unlit[256 * 256 * 4];
-    vfi_preint_table_incremental(&fx->cls, slab_q16, &fx->scratch, q15_out(main_a, lit_a));
-    if (n <= 256) {
-        vfi_preint_table_incremental(&fx->cls, slab_q16, &fx->scratch, q15_out(unlit, NULL));
-        if (memcmp(unlit, main_a, (size_t)n * n * 4 * sizeof unlit[0]) != 0) {
-            check_fail(__FILE__, __LINE__, "N %u d %g: the main table differs with the lit outputs asked for", n, d);
-            return 0;
-        }
-    }
-    if (bruteforce) {
-        vfi_preint_table_bruteforce(&fx->cls, slab_q16, &fx->scratch, q15_out(main_b, lit_b));
+    for (int builder = 0; builder < (bruteforce ? 2 : 1); builder++) {
+        void (*build)(const vfi_classify_t *, uint32_t, const vfi_table_scratch_t *, vfi_table_out_t) =
+            builder ? vfi_preint_table_bruteforce : vfi_preint_table_incremental;
+        uint16_t *m = builder ? main_b : main_a;
+        build(&fx->cls, slab_q16, &fx->scratch, q15_out(m, builder ? lit_b : lit_a));
+        /* the main table is the same to the bit with the lit outputs asked for or not */
         if (n <= 256) {
-            vfi_preint_table_bruteforce(&fx->cls, slab_q16, &fx->scratch, q15_out(unlit, NULL));
-            if (memcmp(unlit, main_b, (size_t)n * n * 4 * sizeof unlit[0]) != 0) {
-                check_fail(__FILE__, __LINE__, "N %u d %g: the brute force's main table differs with lit", n, d);
+            build(&fx->cls, slab_q16, &fx->scratch, q15_out(unlit, NULL));
+            if (memcmp(unlit, m, (size_t)n * n * 4 * sizeof unlit[0]) != 0) {
+                check_fail(__FILE__, __LINE__, "N %u d %g: the %s main table differs with the lit outputs asked for",
+                           n, d, builder ? "brute force's" : "incremental");
                 return 0;
             }
         }
@@ -318,7 +244,7 @@ static void lit_against_spec(void)
     worst_t w = {0, 0, 0, {0, 0}, 0, {0, 0}};
     for (size_t sn = 0; sn < sizeof sizes / sizeof sizes[0]; sn++) {
         fixture_t fx;
-        CHECK(fixture_init(&fx, sizes[sn].n));
+        CHECK(fixture_init(&fx, sizes[sn].n, true));
         for (uint32_t t = 0; t < sizes[sn].tfs; t++)
             for (int grey = 0; grey < 2; grey++) {
                 const vf_tf_t tf = random_tf(grey);
@@ -352,7 +278,7 @@ static void lit_special(void)
     const vf_tf_t tfs[] = {{&constant, 1}, {&white, 1}, {peak, 3}, {step, 2}};
     worst_t w = {0, 0, 0, {0, 0}, 0, {0, 0}};
     fixture_t fx;
-    CHECK(fixture_init(&fx, 64));
+    CHECK(fixture_init(&fx, 64, true));
     for (size_t t = 0; t < sizeof tfs / sizeof tfs[0]; t++) {
         CHECK_EQ(vfi_classify(&fx.cls, &tfs[t]), VF_OK);
         for (double d = 0.3; d < 6; d *= 2.3)
@@ -372,7 +298,7 @@ static void lit_grey_twin(void)
     for (size_t sn = 0; sn < sizeof sizes / sizeof sizes[0]; sn++) {
         const uint32_t n = sizes[sn];
         fixture_t fx;
-        CHECK(fixture_init(&fx, n));
+        CHECK(fixture_init(&fx, n, true));
         for (int t = 0; t < 4; t++) {
             const vf_tf_t tf = random_tf(true);
             CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -408,7 +334,7 @@ static void lit_parts_and_demand(void)
         const uint32_t n = sizes[sn];
         const size_t values = (size_t)n * n * 4;
         fixture_t fx;
-        CHECK(fixture_init(&fx, n));
+        CHECK(fixture_init(&fx, n, true));
         for (int t = 0; t < 3; t++) {
             const vf_tf_t tf = random_tf(t == 1);
             CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -478,7 +404,7 @@ static void lit_formats(void)
     for (size_t sn = 0; sn < sizeof sizes / sizeof sizes[0]; sn++) {
         const uint32_t n = sizes[sn];
         fixture_t fx;
-        CHECK(fixture_init(&fx, n));
+        CHECK(fixture_init(&fx, n, true));
         for (int t = 0; t < 6; t++) {
             const vf_tf_t tf = random_tf(t % 3 == 0);
             CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -571,7 +497,7 @@ static void lit_view_table(void)
     const uint32_t n = 256;
     const size_t count = (size_t)n * n;
     fixture_t fx;
-    CHECK(fixture_init(&fx, n));
+    CHECK(fixture_init(&fx, n, true));
     for (int t = 0; t < 3; t++) {
         const vf_tf_t tf = random_tf(t == 2);
         CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -614,7 +540,7 @@ static uint8_t main_u8[MAX_N * MAX_N * 4], lit_u8[MAX_N * MAX_N * 4];
 static void lit_extremes(void)
 {
     fixture_t fx;
-    CHECK(fixture_init(&fx, MAX_N));
+    CHECK(fixture_init(&fx, MAX_N, true));
     vf_tf_point_t white = {0, 65535, 65535, 65535, 65535};
     vf_tf_t tf = {&white, 1};
     CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -649,7 +575,7 @@ static void lit_extremes(void)
 static void lit_large(void)
 {
     fixture_t fx;
-    CHECK(fixture_init(&fx, MAX_N));
+    CHECK(fixture_init(&fx, MAX_N, true));
     for (int t = 0; t < 3; t++) {
         const vf_tf_t tf = random_tf(false);
         CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
@@ -696,7 +622,7 @@ static void lit_public_api(void)
         CHECK_EQ(vf_table_preint(&tf, 64, slab, (vf_builder_t)builder, &arena, plain), VF_OK);
         CHECK(memcmp(out, plain, sizeof out) == 0);
         fixture_t fx;
-        CHECK(fixture_init(&fx, 64));
+        CHECK(fixture_init(&fx, 64, true));
         CHECK_EQ(vfi_classify(&fx.cls, &tf), VF_OK);
         if (builder == VF_BUILDER_INCREMENTAL)
             vfi_preint_table_incremental(&fx.cls, slab, &fx.scratch, q15_out(main_a, lit_a));
@@ -728,10 +654,7 @@ static void lit_public_api(void)
     CHECK_EQ(arena.used, 0);
 }
 
-CHECK_CASES({"emission_depth", emission_depth}, {"lit_against_spec", lit_against_spec},
-            {"lit_special", lit_special}, {"lit_grey_twin", lit_grey_twin},
-            {"lit_parts_and_demand", lit_parts_and_demand},
-            {"lit_formats", lit_formats}, {"lit_view_table", lit_view_table}, {"lit_extremes", lit_extremes},
-            {"lit_large", lit_large},
-            {"lit_public_api", lit_public_api});
+CHECK_CASES(CHECK_CASE(emission_depth), CHECK_CASE(lit_against_spec), CHECK_CASE(lit_special),
+            CHECK_CASE(lit_grey_twin), CHECK_CASE(lit_parts_and_demand), CHECK_CASE(lit_formats),
+            CHECK_CASE(lit_view_table), CHECK_CASE(lit_extremes), CHECK_CASE(lit_large), CHECK_CASE(lit_public_api));
 CHECK_RUN("core/lit_tables")

@@ -154,6 +154,5 @@ static void by_hand(void)
     CHECK(s[0].a == 12 && s[0].b == 15);
 }
 
-CHECK_CASES({"one_row_is_the_union", one_row_is_the_union}, {"two_rows_are_the_union", two_rows_are_the_union},
-            {"by_hand", by_hand});
+CHECK_CASES(CHECK_CASE(one_row_is_the_union), CHECK_CASE(two_rows_are_the_union), CHECK_CASE(by_hand));
 CHECK_RUN("core/merge")

@@ -17,20 +17,14 @@
 
 #include "check.h"
 #include "frame.h"
+#include "scene_fixture.h"
 #include "segment.h"
 #include "volfix_internal.h"
 
 static uint64_t rng_state = 0x082EFA98EC4E6C89u;
-static uint64_t rnd64(void)
-{
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return rng_state * 0x2545F4914F6CDD1Du;
-}
 static uint32_t rnd(uint32_t n)
 {
-    return (uint32_t)(rnd64() % n);
+    return check_mod(&rng_state, n);
 }
 
 #define MAXD 18
@@ -43,17 +37,9 @@ static uint16_t ref_img[(MAX_RAYS * 2 * MAXD) * (MAX_RAYS * 2 * MAXD) * 4];
 
 static void fill_random(const vf_volume_t *v)
 {
-    uint32_t nx = v->dims[0], ny = v->dims[1], nz = v->dims[2];
-    int cx = (int)rnd(nx), cy = (int)rnd(ny), cz = (int)rnd(nz), rad = 2 + (int)rnd(5);
-    for (uint32_t z = 0; z < nz; z++)
-        for (uint32_t y = 0; y < ny; y++)
-            for (uint32_t x = 0; x < nx; x++) {
-                int d2 = ((int)x - cx) * ((int)x - cx) + ((int)y - cy) * ((int)y - cy) + ((int)z - cz) * ((int)z - cz);
-                uint32_t val = (d2 < rad * rad ? 170 : 30) + rnd(60);
-                if (rnd(10) == 0)
-                    val = rnd(256);
-                vox[((size_t)z * ny + y) * nx + x] = (uint8_t)val;
-            }
+    static const scene_blob_t blob = {.rad_min = 2, .rad_span = 5, .inside = 170, .outside = 30, .noise = 60,
+                                      .salt = 10};
+    scene_fill_blob(vox, v->dims, &blob, check_mod, &rng_state);
 }
 
 static vf_tf_point_t tf_pts[8];
@@ -61,16 +47,31 @@ static vf_tf_point_t tf_pts[8];
 /* Narrow peaks and plateaus, so that most cells are invisible and the skipping matters. */
 static vf_tf_t random_tf(void)
 {
-    uint32_t count = 1 + rnd(6), s = rnd(50000);
-    for (uint32_t p = 0; p < count; p++) {
-        if (p)
-            s += rnd(12000);
-        uint32_t k = rnd(5);
-        tf_pts[p] = (vf_tf_point_t){(uint16_t)(s > 65280 ? 65280 : s), (uint16_t)rnd(65536), (uint16_t)rnd(65536),
-                                    (uint16_t)rnd(65536),
-                                    (uint16_t)(k < 2 ? 0 : k == 2 ? 65535 : k == 3 ? rnd(3000) : rnd(65536))};
-    }
-    return (vf_tf_t){tf_pts, count};
+    static const scene_tf_style_t style = {.step = 12000, .zeros = 2, .faint = 3000};
+    return scene_random_tf(tf_pts, &style, check_mod, &rng_state);
+}
+
+/* A volume of 2..MAXD voxels a side over vox, unit spacing, not yet filled. */
+static vf_volume_t random_dims(void)
+{
+    vf_volume_t vol = {{2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1)}, {65536, 65536, 65536},
+                       VF_VOXEL_U8, vox};
+    return vol;
+}
+
+/* A frame of vol with p, tf and view drawn by a fresh renderer into out, 64 x 48 RGB888; *slab_q16 its slab. */
+static vf_status_t draw_fresh(unsigned char *out, const vf_params_t *p, const vf_volume_t *vol, const vf_tf_t *tf,
+                              const vf_view_t *view, uint32_t *slab_q16)
+{
+    vf_arena_t arena;
+    vf_renderer_t *r;
+    vf_status_t s = scene_renderer(&r, &arena, arena_buf, sizeof arena_buf, p, vol, tf);
+    vf_image_t im = {out, 64, 48, 64 * 3, VF_FORMAT_RGB888};
+    if (s == VF_OK)
+        s = vf_renderer_draw(r, view, &im, scratch, sizeof scratch);
+    if (s == VF_OK)
+        *slab_q16 = vf_renderer_factor(r)->slab_q16;
+    return s;
 }
 
 /* Standard voxel (i, j) of standard slice k, i and j clamped to the slice (the padding repeats the edge). */
@@ -201,23 +202,18 @@ static const char *describe(const vf_params_t *p)
 
 static void one_scene(const vf_params_t *params)
 {
-    vf_volume_t vol = {{2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1)}, {65536, 65536, 65536},
-                       VF_VOXEL_U8, vox};
+    vf_volume_t vol = random_dims();
     if (rnd(3) == 0)
         for (int a = 0; a < 3; a++)
             vol.spacing_q16[a] = 40000 + rnd(3 * 65536);
     fill_random(&vol);
-    vf_arena_t arena;
-    vf_arena_init(&arena, arena_buf, sizeof arena_buf);
-    vf_renderer_t *r = NULL;
-    vf_status_t st = vf_renderer_create(&r, params, &vol, &arena);
-    if (st != VF_OK) {
-        check_fail(__FILE__, __LINE__, "create (%s): %s", describe(params), vf_status_text(st));
-        return;
-    }
     vf_tf_t tf = random_tf();
-    if (vf_renderer_set_window(r, (vf_window_t){0, 255}) != VF_OK || vf_renderer_set_tf(r, &tf) != VF_OK) {
-        check_fail(__FILE__, __LINE__, "window / transfer function");
+    vf_arena_t arena;
+    vf_renderer_t *r;
+    vf_status_t st = scene_renderer(&r, &arena, arena_buf, sizeof arena_buf, params, &vol, &tf);
+    if (st != VF_OK) {
+        check_fail(__FILE__, __LINE__, "create, window, transfer function (%s): %s", describe(params),
+                   vf_status_text(st));
         return;
     }
     for (int frame = 0; frame < 3; frame++) {
@@ -289,21 +285,14 @@ static void buffers_identical(void)
         vf_params_t p;
         vf_params_default(&p);
         p.lookup = t % 2 ? VF_LOOKUP_BILINEAR : VF_LOOKUP_NEAREST;
-        vf_volume_t vol = {{2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1)}, {65536, 65536, 65536},
-                           VF_VOXEL_U8, vox};
+        vf_volume_t vol = random_dims();
         fill_random(&vol);
         vf_tf_t tf = random_tf();
         vf_view_t view = {(int32_t)rnd(65536), (int32_t)rnd(65536), (int32_t)rnd(65536), 65536};
         for (int b = 0; b < 2; b++) {
             p.buffer = b ? VF_BUFFER_IMAGE : VF_BUFFER_SLICE;
-            vf_arena_t arena;
-            vf_arena_init(&arena, arena_buf, sizeof arena_buf);
-            vf_renderer_t *r = NULL;
-            CHECK_EQ(vf_renderer_create(&r, &p, &vol, &arena), VF_OK);
-            CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
-            CHECK_EQ(vf_renderer_set_tf(r, &tf), VF_OK);
-            vf_image_t im = {pixels[b], 64, 48, 64 * 3, VF_FORMAT_RGB888};
-            CHECK_EQ(vf_renderer_draw(r, &view, &im, scratch, sizeof scratch), VF_OK);
+            uint32_t slab;
+            CHECK_EQ(draw_fresh(pixels[b], &p, &vol, &tf, &view, &slab), VF_OK);
         }
         CHECK(memcmp(pixels[0], pixels[1], 64 * 48 * 3) == 0);
     }
@@ -318,23 +307,16 @@ static void lut_at_unit_slab(void)
         vf_params_t p;
         vf_params_default(&p);
         p.mode = t % 3 == 0 ? VF_MODE_POINT : t % 3 == 1 ? VF_MODE_PREINT1 : VF_MODE_PRECLASS;
-        vf_volume_t vol = {{2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1), 2 + rnd(MAXD - 1)}, {65536, 65536, 65536},
-                           VF_VOXEL_U8, vox};
+        vf_volume_t vol = random_dims();
         fill_random(&vol);
         vf_tf_t tf = random_tf();
         tf_pts[0].a = 20000;
         vf_view_t view = {(int32_t)rnd(4) * 16384, 0, 0, 65536};
         for (int c = 0; c < 2; c++) {
             p.correction = c ? VF_CORRECTION_LUT : VF_CORRECTION_REBUILD;
-            vf_arena_t arena;
-            vf_arena_init(&arena, arena_buf, sizeof arena_buf);
-            vf_renderer_t *r = NULL;
-            CHECK_EQ(vf_renderer_create(&r, &p, &vol, &arena), VF_OK);
-            CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
-            CHECK_EQ(vf_renderer_set_tf(r, &tf), VF_OK);
-            vf_image_t im = {pixels[c], 64, 48, 64 * 3, VF_FORMAT_RGB888};
-            CHECK_EQ(vf_renderer_draw(r, &view, &im, scratch, sizeof scratch), VF_OK);
-            CHECK_EQ(vf_renderer_factor(r)->slab_q16, 65536);
+            uint32_t slab;
+            CHECK_EQ(draw_fresh(pixels[c], &p, &vol, &tf, &view, &slab), VF_OK);
+            CHECK_EQ(slab, 65536);
         }
         for (size_t e = 0; e < 64 * 48 * 3; e++)
             CHECK_MSG(abs((int)pixels[0][e] - (int)pixels[1][e]) <= 2, "%s: pixel %zu channel %zu: rebuild %u, lut %u",
@@ -423,7 +405,6 @@ static void option_arguments(void)
     CHECK(strcmp(vf_mode_name(VF_MODE_PRECLASS), vf_mode_name(VF_MODE_POINT)) != 0);
 }
 
-CHECK_CASES({"all_options", all_options}, {"buffers_identical", buffers_identical},
-            {"lut_at_unit_slab", lut_at_unit_slab},
-            {"option_arguments", option_arguments});
+CHECK_CASES(CHECK_CASE(all_options), CHECK_CASE(buffers_identical), CHECK_CASE(lut_at_unit_slab),
+            CHECK_CASE(option_arguments));
 CHECK_RUN("core/options")

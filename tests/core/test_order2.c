@@ -17,6 +17,7 @@
 #include "check.h"
 #include "frame.h"
 #include "ref/ref.h"
+#include "scene_fixture.h"
 #include "render/render_mt.h"
 #include "io/volume.h"
 #include "volfix.h"
@@ -303,18 +304,22 @@ static vf_volume_t random_volume(void)
     return (vf_volume_t){{n[0], n[1], n[2]}, {65536, 65536, 65536 + 30000 * check_below(&seed, 2)}, VF_VOXEL_U8, vox};
 }
 
+/* The defaults in preint2. */
+static vf_params_t preint2_params(void)
+{
+    vf_params_t p;
+    vf_params_default(&p);
+    p.mode = VF_MODE_PREINT2;
+    return p;
+}
+
 /* A frame's intermediate image (copied into out), with the general loops or not, lit or not. */
 static vf_status_t frame(int k, const vf_params_t *p, const vf_volume_t *vol, const vf_tf_t *tf, bool lit,
                          const vf_view_t *view, bool general, uint16_t *out, size_t *values, uint32_t *nk)
 {
     vf_arena_t arena;
-    vf_arena_init(&arena, arena_buf[k], sizeof arena_buf[k]);
     vf_renderer_t *r;
-    vf_status_t s = vf_renderer_create(&r, p, vol, &arena);
-    if (s == VF_OK)
-        s = vf_renderer_set_window(r, (vf_window_t){0, 255});
-    if (s == VF_OK)
-        s = vf_renderer_set_tf(r, tf);
+    vf_status_t s = scene_renderer(&r, &arena, arena_buf[k], sizeof arena_buf[k], p, vol, tf);
     if (s == VF_OK && p->lighting) { /* a light from the right and, every other frame, gradient opacity */
         vf_lighting_t l;
         vf_lighting_default(&l);
@@ -347,9 +352,7 @@ static void general_equals_default(void)
         const vf_volume_t vol = random_volume();
         uint32_t count;
         const vf_tf_t tf = random_tf(&count);
-        vf_params_t p;
-        vf_params_default(&p);
-        p.mode = VF_MODE_PREINT2;
+        vf_params_t p = preint2_params();
         p.table_size = n % 3 ? 256 : 100;
         p.table2_size = 16 + check_below(&seed, 40);
         p.buffer = n % 2 ? VF_BUFFER_IMAGE : VF_BUFFER_SLICE;
@@ -377,9 +380,7 @@ static void threads_identical(void)
         const vf_volume_t vol = random_volume();
         uint32_t count;
         const vf_tf_t tf = random_tf(&count);
-        vf_params_t p;
-        vf_params_default(&p);
-        p.mode = VF_MODE_PREINT2;
+        vf_params_t p = preint2_params();
         p.table2_size = 24 + 8 * (uint32_t)n;
         p.lighting = n % 2 == 1;
         p.correction = n == 4 ? VF_CORRECTION_LUT : VF_CORRECTION_REBUILD;
@@ -419,9 +420,7 @@ static void last_slab_composited(void)
         const vf_volume_t vol = {{8, 8, nz}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
         vf_tf_point_t pts[2] = {{0, 0, 0, 0, 0}, {255 * 256, 65535, 65535, 65535, 65535}};
         const vf_tf_t tf = {pts, 2};
-        vf_params_t p;
-        vf_params_default(&p);
-        p.mode = VF_MODE_PREINT2;
+        vf_params_t p = preint2_params();
         const vf_view_t view = {0, 0, 0, 65536};
         size_t values;
         uint32_t nk;
@@ -461,11 +460,8 @@ static void lit_sphere(void)
         p.mode = k == 3 ? VF_MODE_PREINT1 : VF_MODE_PREINT2;
         p.lighting = k > 0;
         vf_arena_t arena;
-        vf_arena_init(&arena, arena_buf[0], sizeof arena_buf[0]);
         vf_renderer_t *r;
-        CHECK_EQ(vf_renderer_create(&r, &p, &vol, &arena), VF_OK);
-        CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
-        CHECK_EQ(vf_renderer_set_tf(r, &tf), VF_OK);
+        CHECK_EQ(scene_renderer(&r, &arena, arena_buf[0], sizeof arena_buf[0], &p, &vol, &tf), VF_OK);
         if (p.lighting)
             CHECK_EQ(vf_renderer_set_lighting(r, k == 1 ? NULL : &l), VF_OK);
         const vf_image_t im = {px[k], 64, 64, 64 * 3, VF_FORMAT_RGB888};
@@ -490,34 +486,43 @@ static void refused(void)
     const vf_volume_t vol = {{4, 4, 4}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
     vf_params_t p;
     vf_params_default(&p);
-    size_t bytes;
     CHECK_EQ(p.table2_size, VF_DEFAULT_TABLE2);
-    p.mode = VF_MODE_PREINT2;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_OK);
-    p.partial_slabs = true;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_ERR_UNSUPPORTED);
-    p.partial_slabs = false;
-    p.lookup = VF_LOOKUP_BILINEAR;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_ERR_ARG);
-    p.lookup = VF_LOOKUP_TRILINEAR;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_OK);
-    p.mode = VF_MODE_PREINT1;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_ERR_ARG);
-    p.mode = VF_MODE_PREINT2;
-    p.lookup = VF_LOOKUP_NEAREST;
-    p.table2_size = 15;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_ERR_ARG);
-    p.table2_size = 129;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_ERR_ARG);
-    p.table2_size = 0; /* ignored by the other modes */
-    p.mode = VF_MODE_POINT;
-    CHECK_EQ(vf_renderer_bytes(&p, &vol, &bytes), VF_OK);
+    CHECK_EQ(p.lookup, VF_LOOKUP_NEAREST);
+    /* the defaults with each row's mode, partial slabs, lookup and 3D table size */
+    static const struct {
+        vf_mode_t mode;
+        bool partial;
+        vf_lookup_t lookup;
+        uint32_t table2_size;
+        vf_status_t want;
+    } rows[] = {
+        {VF_MODE_PREINT2, false, VF_LOOKUP_NEAREST, VF_DEFAULT_TABLE2, VF_OK},
+        {VF_MODE_PREINT2, true, VF_LOOKUP_NEAREST, VF_DEFAULT_TABLE2, VF_ERR_UNSUPPORTED},
+        {VF_MODE_PREINT2, false, VF_LOOKUP_BILINEAR, VF_DEFAULT_TABLE2, VF_ERR_ARG},
+        {VF_MODE_PREINT2, false, VF_LOOKUP_TRILINEAR, VF_DEFAULT_TABLE2, VF_OK},
+        {VF_MODE_PREINT1, false, VF_LOOKUP_TRILINEAR, VF_DEFAULT_TABLE2, VF_ERR_ARG},
+        {VF_MODE_PREINT2, false, VF_LOOKUP_NEAREST, 15, VF_ERR_ARG},
+        {VF_MODE_PREINT2, false, VF_LOOKUP_NEAREST, 129, VF_ERR_ARG},
+        {VF_MODE_POINT, false, VF_LOOKUP_NEAREST, 0, VF_OK}, /* the 3D table's size is ignored by the other modes */
+    };
+    for (size_t n = 0; n < sizeof rows / sizeof rows[0]; n++) {
+        vf_params_default(&p);
+        p.mode = rows[n].mode;
+        p.partial_slabs = rows[n].partial;
+        p.lookup = rows[n].lookup;
+        p.table2_size = rows[n].table2_size;
+        size_t bytes;
+        const vf_status_t got = vf_renderer_bytes(&p, &vol, &bytes);
+        CHECK_MSG(got == rows[n].want, "row %zu (%s, partial %d, %s, %u): %s, want %s", n, vf_mode_name(p.mode),
+                  (int)p.partial_slabs, vf_lookup_name(p.lookup), p.table2_size, vf_status_text(got),
+                  vf_status_text(rows[n].want));
+    }
     CHECK(strcmp(vf_mode_name(VF_MODE_PREINT2), "preint2") == 0);
     CHECK(strcmp(vf_lookup_name(VF_LOOKUP_TRILINEAR), "trilinear") == 0);
 }
 
-CHECK_CASES({"table_against_double", table_against_double}, {"lit_against_double", lit_against_double}, {"parts_equal_whole", parts_equal_whole},
-            {"mirrors_and_bounds", mirrors_and_bounds}, {"line_is_order1", line_is_order1},
-            {"general_equals_default", general_equals_default}, {"threads_identical", threads_identical},
-            {"last_slab_composited", last_slab_composited}, {"lit_sphere", lit_sphere}, {"refused", refused});
+CHECK_CASES(CHECK_CASE(table_against_double), CHECK_CASE(lit_against_double), CHECK_CASE(parts_equal_whole),
+            CHECK_CASE(mirrors_and_bounds), CHECK_CASE(line_is_order1), CHECK_CASE(general_equals_default),
+            CHECK_CASE(threads_identical), CHECK_CASE(last_slab_composited), CHECK_CASE(lit_sphere),
+            CHECK_CASE(refused));
 CHECK_RUN("order2")

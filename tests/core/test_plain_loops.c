@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "scene_fixture.h"
 #include "volfix.h"
 #include "volfix_internal.h"
 
@@ -22,17 +23,9 @@ static void random_volume(uint32_t n[3])
 {
     for (int a = 0; a < 3; a++)
         n[a] = 6 + check_below(&seed, MAXD - 6);
-    const int cx = (int)check_below(&seed, n[0]), cy = (int)check_below(&seed, n[1]), cz = (int)check_below(&seed, n[2]);
-    const int rad = 3 + (int)check_below(&seed, 6);
-    for (uint32_t z = 0; z < n[2]; z++)
-        for (uint32_t y = 0; y < n[1]; y++)
-            for (uint32_t x = 0; x < n[0]; x++) {
-                const int d2 = ((int)x - cx) * ((int)x - cx) + ((int)y - cy) * ((int)y - cy) + ((int)z - cz) * ((int)z - cz);
-                uint32_t v = (d2 < rad * rad ? 170 : 20) + check_below(&seed, 60);
-                if (check_below(&seed, 10) == 0)
-                    v = check_below(&seed, 256);
-                vox[((size_t)z * n[1] + y) * n[0] + x] = (uint8_t)v;
-            }
+    static const scene_blob_t blob = {.rad_min = 3, .rad_span = 6, .inside = 170, .outside = 20, .noise = 60,
+                                      .salt = 10};
+    scene_fill_blob(vox, n, &blob, check_below, &seed);
 }
 
 static vf_tf_point_t points[6];
@@ -54,13 +47,8 @@ static vf_status_t frame(int k, const vf_params_t *p, const vf_volume_t *vol, co
                          const vf_lighting_t *l, const vf_view_t *view, bool general, uint16_t **inter, size_t *values)
 {
     vf_arena_t arena;
-    vf_arena_init(&arena, arena_buf[k], sizeof arena_buf[k]);
     vf_renderer_t *r;
-    vf_status_t s = vf_renderer_create(&r, p, vol, &arena);
-    if (s == VF_OK)
-        s = vf_renderer_set_window(r, (vf_window_t){0, 255});
-    if (s == VF_OK)
-        s = vf_renderer_set_tf(r, tf);
+    vf_status_t s = scene_renderer(&r, &arena, arena_buf[k], sizeof arena_buf[k], p, vol, tf);
     if (s == VF_OK && p->lighting)
         s = vf_renderer_set_lighting(r, l);
     vfi_renderer_general_loops(r, general);

@@ -10,94 +10,9 @@
 
 #include "check.h"
 #include "frame.h"
+#include "render_scene.h"
 #include "volfix.h"
 #include "volfix_internal.h"
-
-static uint64_t rng_state = 0xA4093822299F31D0u;
-static uint64_t rnd64(void)
-{
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return rng_state * 0x2545F4914F6CDD1Du;
-}
-static uint32_t rnd(uint32_t n)
-{
-    return (uint32_t)(rnd64() % n);
-}
-
-/* ---- scenes ----------------------------------------------------------------------------------------- */
-
-#define MAXD 20
-static uint8_t vox[MAXD * MAXD * MAXD];
-static _Alignas(16) unsigned char arena_buf[1 << 22];
-static _Alignas(16) unsigned char scratch[1 << 20];
-static unsigned char pixels[3][200 * 200 * 4];
-
-typedef struct scene {
-    vf_volume_t vol;
-    vf_params_t params;
-    vf_arena_t arena;
-    vf_renderer_t *r;
-} scene_t;
-
-static vf_volume_t volume_of(uint32_t nx, uint32_t ny, uint32_t nz)
-{
-    vf_volume_t v = {{nx, ny, nz}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
-    return v;
-}
-
-static void fill_random(const vf_volume_t *v)
-{
-    uint32_t nx = v->dims[0], ny = v->dims[1], nz = v->dims[2];
-    int cx = (int)rnd(nx), cy = (int)rnd(ny), cz = (int)rnd(nz), rad = 2 + (int)rnd(6);
-    for (uint32_t z = 0; z < nz; z++)
-        for (uint32_t y = 0; y < ny; y++)
-            for (uint32_t x = 0; x < nx; x++) {
-                int d2 = ((int)x - cx) * ((int)x - cx) + ((int)y - cy) * ((int)y - cy) + ((int)z - cz) * ((int)z - cz);
-                uint32_t val = (d2 < rad * rad ? 180 : 30) + rnd(50);
-                if (rnd(12) == 0)
-                    val = rnd(256);
-                vox[((size_t)z * ny + y) * nx + x] = (uint8_t)val;
-            }
-}
-
-static vf_tf_point_t tf_pts[8];
-
-static vf_tf_t random_tf(void)
-{
-    uint32_t count = 1 + rnd(6), s = rnd(50000);
-    for (uint32_t p = 0; p < count; p++) {
-        if (p)
-            s += rnd(15000);
-        uint32_t k = rnd(5);
-        tf_pts[p] = (vf_tf_point_t){(uint16_t)(s > 65280 ? 65280 : s), (uint16_t)rnd(65536), (uint16_t)rnd(65536),
-                                    (uint16_t)rnd(65536),
-                                    (uint16_t)(k == 0 ? 0 : k == 1 ? 65535 : k == 2 ? rnd(2000) : rnd(65536))};
-    }
-    return (vf_tf_t){tf_pts, count};
-}
-
-static vf_status_t scene_create(scene_t *s, vf_mode_t mode, uint32_t table_size)
-{
-    vf_params_default(&s->params);
-    s->params.mode = mode;
-    s->params.table_size = table_size;
-    vf_arena_init(&s->arena, arena_buf, sizeof arena_buf);
-    s->r = NULL;
-    return vf_renderer_create(&s->r, &s->params, &s->vol, &s->arena);
-}
-
-static vf_image_t image_of(int n, uint32_t w, uint32_t h, vf_format_t format)
-{
-    vf_image_t im = {pixels[n], w, h, w * vf_format_bytes(format), format};
-    return im;
-}
-
-static size_t scratch_for(const scene_t *s)
-{
-    return vf_renderer_band_scratch_bytes(s->r, s->vol.dims[0] + s->vol.dims[1] + s->vol.dims[2]);
-}
 
 /* ---- state machine and arguments ------------------------------------------------------------------- */
 
@@ -214,8 +129,7 @@ static void bad_tf_keeps_picture(void)
     CHECK_EQ(scene_create(&s, VF_MODE_PREINT1, 256), VF_OK);
     vf_tf_t tf = random_tf();
     tf_pts[0].a = 20000;
-    CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-    CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
+    CHECK_EQ(scene_ready(&s, &tf), VF_OK);
     vf_view_t view = {5000, 3000, 0, 65536};
     vf_image_t a = image_of(0, 25, 25, VF_FORMAT_RGB888), b = image_of(1, 25, 25, VF_FORMAT_RGB888);
     CHECK_EQ(vf_renderer_draw(s.r, &view, &a, scratch, scratch_for(&s)), VF_OK);
@@ -244,8 +158,7 @@ static void tf_change_inside_frame(void)
     vf_tf_point_t p1[2] = {{0, 65535, 0, 0, 0}, {100 * 256, 65535, 0, 0, 30000}};
     vf_tf_point_t p2[2] = {{0, 0, 65535, 0, 30000}, {100 * 256, 0, 65535, 0, 0}};
     vf_tf_t tf1 = {p1, 2}, tf2 = {p2, 2};
-    CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-    CHECK_EQ(vf_renderer_set_tf(s.r, &tf2), VF_OK);
+    CHECK_EQ(scene_ready(&s, &tf2), VF_OK);
     vf_view_t view = {5000, 3000, 0, 65536};
     vf_image_t want = image_of(0, 25, 25, VF_FORMAT_RGB888), got = image_of(1, 25, 25, VF_FORMAT_RGB888);
     CHECK_EQ(vf_renderer_draw(s.r, &view, &want, scratch, scratch_for(&s)), VF_OK); /* the picture of tf2 */
@@ -377,8 +290,7 @@ static void two_renderers(void)
     CHECK_EQ(vf_renderer_create(&r2, &p2, &s.vol, &arena2), VF_OK);
     vf_tf_t tf = random_tf();
     tf_pts[0].a = 9000;
-    CHECK_EQ(vf_renderer_set_window(s.r, (vf_window_t){0, 255}), VF_OK);
-    CHECK_EQ(vf_renderer_set_tf(s.r, &tf), VF_OK);
+    CHECK_EQ(scene_ready(&s, &tf), VF_OK);
     vf_view_t view = {7000, -2000, 100, 65536};
     vf_image_t a = image_of(0, 30, 30, VF_FORMAT_RGB888), b = image_of(1, 30, 30, VF_FORMAT_RGB888);
     CHECK_EQ(vf_renderer_draw(s.r, &view, &a, scratch, scratch_for(&s)), VF_OK);
@@ -425,8 +337,7 @@ static void null_and_range_safe(void)
     CHECK(m.total > 0 && m.total <= s.arena.used);
 }
 
-CHECK_CASES({"null_and_range_safe", null_and_range_safe}, {"state_machine", state_machine},
-            {"bad_tf_keeps_picture", bad_tf_keeps_picture},
-            {"tf_change_inside_frame", tf_change_inside_frame}, {"create_arguments", create_arguments},
-            {"status_texts", status_texts}, {"two_renderers", two_renderers});
+CHECK_CASES(CHECK_CASE(null_and_range_safe), CHECK_CASE(state_machine), CHECK_CASE(bad_tf_keeps_picture),
+            CHECK_CASE(tf_change_inside_frame), CHECK_CASE(create_arguments), CHECK_CASE(status_texts),
+            CHECK_CASE(two_renderers));
 CHECK_RUN("core/render_api")

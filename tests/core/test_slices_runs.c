@@ -11,16 +11,9 @@
 #include "renderer.h"
 
 static uint64_t rng_state = 0x13198A2E03707344u;
-static uint64_t rnd64(void)
-{
-    rng_state ^= rng_state >> 12;
-    rng_state ^= rng_state << 25;
-    rng_state ^= rng_state >> 27;
-    return rng_state * 0x2545F4914F6CDD1Du;
-}
 static uint32_t rnd(uint32_t n)
 {
-    return (uint32_t)(rnd64() % n);
+    return check_mod(&rng_state, n);
 }
 
 /* s = clamp(round((v - lo) 255 / (hi - lo)), 0, 255), round half up, exactly. v, lo and hi are int32 values, so
@@ -61,7 +54,7 @@ static void window_all_values(void)
     }
     /* random windows and values over the whole int32 range */
     for (int t = 0; t < 2000000; t++) {
-        vf_window_t win = {(int32_t)(uint32_t)rnd64(), (int32_t)(uint32_t)rnd64()};
+        vf_window_t win = {(int32_t)(uint32_t)check_rand64(&rng_state), (int32_t)(uint32_t)check_rand64(&rng_state)};
         if (t % 3 == 0) {
             int64_t hi = (int64_t)win.lo + (int64_t)rnd(5000) - 2500;
             win.hi = (int32_t)(hi < INT32_MIN ? INT32_MIN : hi > INT32_MAX ? INT32_MAX : hi);
@@ -69,7 +62,7 @@ static void window_all_values(void)
         if (win.lo == win.hi)
             continue;
         int64_t near = (int64_t)win.lo + (int64_t)rnd(20000) - 10000;
-        int32_t v = t % 2 ? (int32_t)(uint32_t)rnd64()
+        int32_t v = t % 2 ? (int32_t)(uint32_t)check_rand64(&rng_state)
                           : (int32_t)(near < INT32_MIN ? INT32_MIN : near > INT32_MAX ? INT32_MAX : near);
         CHECK_MSG(vfi_window_scalar(v, win) == spec_window(v, win.lo, win.hi), "window (%d, %d) value %d", win.lo,
                   win.hi, v);
@@ -383,7 +376,6 @@ static void runs_count_matches_fill(void)
     }
 }
 
-CHECK_CASES({"window_all_values", window_all_values}, {"slice_copies", slice_copies},
-            {"window_rejects_empty", window_rejects_empty}, {"runs_random", runs_random},
-            {"runs_all_or_nothing", runs_all_or_nothing}, {"runs_count_matches_fill", runs_count_matches_fill});
+CHECK_CASES(CHECK_CASE(window_all_values), CHECK_CASE(slice_copies), CHECK_CASE(window_rejects_empty),
+            CHECK_CASE(runs_random), CHECK_CASE(runs_all_or_nothing), CHECK_CASE(runs_count_matches_fill));
 CHECK_RUN("core/slices_runs")

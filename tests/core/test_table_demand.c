@@ -201,6 +201,5 @@ static void demand_not_asked(void)
     }
 }
 
-CHECK_CASES({"demand_equals_whole", demand_equals_whole}, {"demand_table_state", demand_table_state},
-            {"demand_not_asked", demand_not_asked});
+CHECK_CASES(CHECK_CASE(demand_equals_whole), CHECK_CASE(demand_table_state), CHECK_CASE(demand_not_asked));
 CHECK_RUN("core/table_demand")

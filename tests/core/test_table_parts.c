@@ -215,5 +215,5 @@ static void parts_state(void)
     CHECK_EQ(finish(&p, got_px), VF_OK);
 }
 
-CHECK_CASES({"parts_equal_whole", parts_equal_whole}, {"parts_state", parts_state});
+CHECK_CASES(CHECK_CASE(parts_equal_whole), CHECK_CASE(parts_state));
 CHECK_RUN("core/table_parts")

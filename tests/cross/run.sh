@@ -45,6 +45,10 @@ if [ -z "$data" ] || [ ! -d "$data" ]; then
 fi
 nscenes=$(grep -c . "$scenes")
 
+# Lines of a hashes file (below) for scene I: its one-thread hash (or "error:"), and all of them as "N=HASH ".
+one_hash() { awk -v i="$2" '$1 == i && $2 == 1 { print $3 }' "$1"; }
+all_hashes() { awk -v i="$2" '$1 == i { printf "%s=%s ", $2, $3 }' "$1"; }
+
 # hashes BUILD RUNNER OUT: one line per scene and thread count, "INDEX THREADS HASH" (or "... error: MESSAGE")
 hashes() {
     build=$1 runner=$2 out=$3
@@ -72,7 +76,7 @@ hashes "$native" "" "$tmp/native"
 i=0
 while IFS= read -r scene; do
     i=$((i + 1))
-    one=$(awk -v i=$i '$1 == i && $2 == 1 { print $3 }' "$tmp/native")
+    one=$(one_hash "$tmp/native" $i)
     case "$one" in
         "" | error*)
             fail "native/scene$i" "volfix-sim render $scene: $(awk -v i=$i '$1 == i && $2 == 1' "$tmp/native" |
@@ -81,8 +85,7 @@ while IFS= read -r scene; do
             ;;
     esac
     if [ "$(awk -v i=$i -v h="$one" '$1 == i && $3 != h' "$tmp/native")" ]; then
-        fail "native/scene$i" "threads change the frame: $(awk -v i=$i '$1 == i { printf "%s threads %s; ", $2, $3 }' \
-            "$tmp/native")"
+        fail "native/scene$i" "threads change the frame: $(all_hashes "$tmp/native" $i)"
     else
         ok "native/scene$i: 1, 2 and 4 threads give one frame"
     fi
@@ -142,10 +145,10 @@ for cross in "$@"; do
     i=0
     while IFS= read -r scene; do
         i=$((i + 1))
-        mine=$(awk -v i=$i '$1 == i { printf "%s=%s ", $2, $3 }' "$tmp/$arch")
-        theirs=$(awk -v i=$i '$1 == i { printf "%s=%s ", $2, $3 }' "$tmp/native")
+        mine=$(all_hashes "$tmp/$arch" $i)
+        theirs=$(all_hashes "$tmp/native" $i)
         if [ "$mine" = "$theirs" ] && ! echo "$mine" | grep -q error; then
-            ok "$arch/frame$i: $scene (1, 2, 4 threads: $(awk -v i=$i '$1 == i && $2 == 1 { print $3 }' "$tmp/$arch"))"
+            ok "$arch/frame$i: $scene (1, 2, 4 threads: $(one_hash "$tmp/$arch" $i))"
         else
             fail "$arch/frame$i" "$scene: $arch ${mine}differs from x86-64 $theirs"
         fi

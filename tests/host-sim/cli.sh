@@ -204,15 +204,17 @@ check_rows() {
             x = num("x_point"); lo = num("x_point_min"); hi = num("x_point_max")
             if (!(lo > 0 && lo <= x && x <= hi)) bad = bad " ratio " lo " " x " " hi
             if ($0 ~ /"mode": "point"/) { points++; if (x != 1 || lo != 1 || hi != 1) bad = bad " point " x }
+            if ($0 ~ /"mode": "preint2"/) { p2++; if ($0 !~ /"table2_size": (32|64|128),/) bad = bad " table2_size" }
         }
-        END { if (rows != want || points != 1) bad = bad " " rows " rows, " points " of point"; if (bad) print bad }'
+        END { if (p2 != 7) bad = bad " " p2 " preint2 rows"
+              if (rows != want || points != 1) bad = bad " " rows " rows, " points " of point"; if (bad) print bad }'
 }
 if [ -f "$VOLFIX_DATA/bucky.nhdr" ]; then small=$VOLFIX_DATA/bucky.nhdr; else small=phantom:sphere:32; fi
 if "$sim" bench "$small" --matrix --size 64x64 --frames 2 --rounds 2 --json >"$tmp/out" 2>"$tmp/err"; then
-    why=$(check_rows 2 2 10 <"$tmp/out")
+    why=$(check_rows 2 2 17 <"$tmp/out")
     if [ -z "$why" ] && [ "$(head -n 1 "$tmp/out")" = "[" ] && [ "$(tail -n 1 "$tmp/out")" = "]" ] &&
         [ "$(grep -c '^volfix-sim bench: round [12] of 2 done' "$tmp/err")" -eq 2 ] && ! grep -q 'volfix-sim' "$tmp/out"; then
-        ok "bench --matrix --rounds 2 --json: 10 rows with two round means, ratios to point per round, progress on stderr"
+        ok "bench --matrix --rounds 2 --json: 17 rows (preint2 7 of them) with two round means, ratios to point per round, progress on stderr"
     else
         fail "bench --matrix --rounds 2 --json" "${why:-$(head -c 300 "$tmp/out") | $(cat "$tmp/err")}"
     fi
@@ -220,7 +222,7 @@ else
     fail "bench --matrix --rounds 2 --json" "$(cat "$tmp/err")"
 fi
 if "$sim" bench phantom:sphere:8 --matrix --size 16x16 --frames 1 --json >"$tmp/out" 2>/dev/null &&
-    why=$(check_rows 3 1 10 <"$tmp/out") && [ -z "$why" ]; then
+    why=$(check_rows 3 1 17 <"$tmp/out") && [ -z "$why" ]; then
     ok "bench --matrix measures 3 rounds unless told"
 else
     fail "bench --matrix default rounds" "${why:-$(head -c 300 "$tmp/out")}"

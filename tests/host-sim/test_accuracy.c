@@ -9,9 +9,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "imgcmp.h"
-#include "io/pngio.h"
-#include "scene.h"
+#include "frame_check.h"
 
 static const struct {
     const char *file, *preset;
@@ -35,7 +33,7 @@ int main(void)
         for (int p = 0; p < 2; p++)
             for (size_t w = 0; w < sizeof views / sizeof views[0]; w++)
                 for (int m = 0; m < 2; m++) {
-                    char err[VFP_ERR_LEN], name[256];
+                    char name[256];
                     snprintf(name, sizeof name, "accuracy/%s/%s/%s/%g,%g", volumes[v].file, presets[p],
                              m ? "preint1" : "point", views[w][0], views[w][1]);
                     sim_opts_t o;
@@ -45,36 +43,8 @@ int main(void)
                     o.params.mode = m ? VF_MODE_PREINT1 : VF_MODE_POINT;
                     o.azimuth = views[w][0];
                     o.elevation = views[w][1];
-                    sim_scene_t s;
-                    vf_image_t core, ref;
-                    vf_factor_t factor;
-                    if (sim_scene_load(&s, &o, err, sizeof err) || sim_render_core(&s, &core, &factor, err, sizeof err)) {
-                        printf("not ok - %s: %s\n", name, err);
-                        failures++;
-                        continue;
-                    }
-                    if (sim_render_reference(&s, &factor, &ref, err, sizeof err)) {
-                        printf("not ok - %s: %s\n", name, err);
-                        failures++;
-                        sim_image_free(&core);
-                        sim_scene_free(&s);
-                        continue;
-                    }
-                    size_t pixels = (size_t)s.width * s.height;
-                    uint8_t *a = malloc(pixels * 3), *b = malloc(pixels * 3);
-                    vfp_image_to_rgb(&core, a);
-                    vfp_image_to_rgb(&ref, b);
                     sim_diff_t d;
-                    sim_diff(a, b, pixels, &d);
-                    int ok = d.psnr_db >= 50 && d.max_abs[3] <= 2;
-                    printf("%s - %s: PSNR %.1f dB, max %d, mean %.4f, over 1: %.4f%%\n", ok ? "ok" : "not ok", name,
-                           d.psnr_db, d.max_abs[3], d.mean_abs[3], d.over1_pct);
-                    failures += !ok;
-                    free(a);
-                    free(b);
-                    sim_image_free(&core);
-                    sim_image_free(&ref);
-                    sim_scene_free(&s);
+                    failures += frame_check(&o, name, &d) != 1;
                 }
     }
     return failures ? 1 : 0;

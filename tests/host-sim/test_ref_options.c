@@ -635,16 +635,11 @@ static void bad_arguments(void)
     free(s);
 }
 
-CHECK_CASES({"lookup_point_by_hand", lookup_point_by_hand}, {"lookup_preint_by_hand", lookup_preint_by_hand},
-            {"lookup_bilinear_render", lookup_bilinear_render},
-            {"lookup_bilinear_on_entries_is_nearest", lookup_bilinear_on_entries_is_nearest},
-            {"table_bits_rounding", table_bits_rounding}, {"table_bits_render_by_hand", table_bits_render_by_hand},
-            {"lut_knots_and_between", lut_knots_and_between}, {"lut_rho_one_is_identity", lut_rho_one_is_identity},
-            {"lut_matches_rebuild_constant_tf", lut_matches_rebuild_constant_tf},
-            {"lut_differs_where_spec_says", lut_differs_where_spec_says},
-            {"lut_slab_one_identical", lut_slab_one_identical},
-            {"lut_after_table_bits_by_hand", lut_after_table_bits_by_hand},
-            {"preclass_constant_volume_is_point", preclass_constant_volume_is_point},
-            {"preclass_interpolates_classified_values", preclass_interpolates_classified_values},
-            {"bad_arguments", bad_arguments});
+CHECK_CASES(CHECK_CASE(lookup_point_by_hand), CHECK_CASE(lookup_preint_by_hand), CHECK_CASE(lookup_bilinear_render),
+            CHECK_CASE(lookup_bilinear_on_entries_is_nearest), CHECK_CASE(table_bits_rounding),
+            CHECK_CASE(table_bits_render_by_hand), CHECK_CASE(lut_knots_and_between),
+            CHECK_CASE(lut_rho_one_is_identity), CHECK_CASE(lut_matches_rebuild_constant_tf),
+            CHECK_CASE(lut_differs_where_spec_says), CHECK_CASE(lut_slab_one_identical),
+            CHECK_CASE(lut_after_table_bits_by_hand), CHECK_CASE(preclass_constant_volume_is_point),
+            CHECK_CASE(preclass_interpolates_classified_values), CHECK_CASE(bad_arguments));
 CHECK_RUN("ref_options")

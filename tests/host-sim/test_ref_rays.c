@@ -484,13 +484,9 @@ static void floor_rises_with_rays(void)
     }
 }
 
-CHECK_CASES({"one_ray_is_the_old_image", one_ray_is_the_old_image},
-            {"rays_keep_the_voxel_rays", rays_keep_the_voxel_rays},
-            {"constant_volume_is_constant_inside", constant_volume_is_constant_inside},
-            {"partial_slabs_match_truth_between_voxels", partial_slabs_match_truth_between_voxels},
-            {"face_scalars_between_voxels", face_scalars_between_voxels},
-            {"warp_reads_the_scaled_image", warp_reads_the_scaled_image},
-            {"bad_rays_refused", bad_rays_refused},
-            {"rays_bring_preint1_closer_to_truth", rays_bring_preint1_closer_to_truth},
-            {"floor_rises_with_rays", floor_rises_with_rays});
+CHECK_CASES(CHECK_CASE(one_ray_is_the_old_image), CHECK_CASE(rays_keep_the_voxel_rays),
+            CHECK_CASE(constant_volume_is_constant_inside), CHECK_CASE(partial_slabs_match_truth_between_voxels),
+            CHECK_CASE(face_scalars_between_voxels), CHECK_CASE(warp_reads_the_scaled_image),
+            CHECK_CASE(bad_rays_refused), CHECK_CASE(rays_bring_preint1_closer_to_truth),
+            CHECK_CASE(floor_rises_with_rays));
 CHECK_RUN("ref_rays")

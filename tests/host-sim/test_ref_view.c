@@ -608,17 +608,11 @@ static void render_random_views_in_range(void)
     free(s);
 }
 
-CHECK_CASES({"factor_projects_corners", factor_projects_corners},
-            {"factor_principal_axis_and_ties", factor_principal_axis_and_ties},
-            {"factor_bad_arguments", factor_bad_arguments},
-            {"factor_adopts_only_close_offsets", factor_adopts_only_close_offsets},
-            {"composite_head_on_closed_form", composite_head_on_closed_form},
-            {"composite_order_follows_view", composite_order_follows_view},
-            {"composite_oblique_by_hand", composite_oblique_by_hand},
-            {"composite_early_termination", composite_early_termination},
-            {"composite_constant_tf_counts", composite_constant_tf_counts},
-            {"composite_partial_slabs_match_truth", composite_partial_slabs_match_truth},
-            {"render_symmetric_sphere_axis_views", render_symmetric_sphere_axis_views},
-            {"render_roll_turns_image", render_roll_turns_image},
-            {"render_random_views_in_range", render_random_views_in_range});
+CHECK_CASES(CHECK_CASE(factor_projects_corners), CHECK_CASE(factor_principal_axis_and_ties),
+            CHECK_CASE(factor_bad_arguments), CHECK_CASE(factor_adopts_only_close_offsets),
+            CHECK_CASE(composite_head_on_closed_form), CHECK_CASE(composite_order_follows_view),
+            CHECK_CASE(composite_oblique_by_hand), CHECK_CASE(composite_early_termination),
+            CHECK_CASE(composite_constant_tf_counts), CHECK_CASE(composite_partial_slabs_match_truth),
+            CHECK_CASE(render_symmetric_sphere_axis_views), CHECK_CASE(render_roll_turns_image),
+            CHECK_CASE(render_random_views_in_range));
 CHECK_RUN("ref_view")

@@ -403,7 +403,7 @@ static void converged_against_finer_steps(void)
                                     {207, 1, 1, 1, 0}};
     ref_volume_t vol = {{n, n, n}, {1, 1, 1}, v};
     ref_view_t view = {5461, 3641, 0, 1.0};
-    truth_opts_t fine = {1.0 / 256, 1e-6, 0};
+    truth_opts_t fine = {1.0 / 256, 1e-6, 0, NULL};
     double worst = 0;
     for (double py = 8; py < 64; py += 9.7)
         for (double px = 8; px < 64; px += 7.3) {

@@ -24,6 +24,27 @@ expect_error "bad --against" "--against core: expected reference or truth" compa
 "$sim" compare --help >"$tmp/out" 2>&1 && grep -q -- '--against' "$tmp/out" && ok "compare --help names --against" ||
     fail "compare --help" "no --against"
 
+# the smooth truth: a phantom's function, Catmull-Rom for data without one; unlit; only for the truth
+if "$sim" compare phantom:marschner-lobb:21 --size 48x48 --preset sharp --against truth --truth-filter smooth \
+    --json >"$tmp/smooth" 2>"$tmp/err" &&
+    "$sim" compare phantom:marschner-lobb:21 --size 48x48 --preset sharp --against truth --json >"$tmp/tri" &&
+    ! cmp -s "$tmp/smooth" "$tmp/tri" && grep -q '"psnr_db": [0-9]' "$tmp/smooth"; then
+    ok "compare --truth-filter smooth differs from trilinear"
+else
+    fail "compare --truth-filter smooth" "$(cat "$tmp/err" "$tmp/smooth" | head -n 3 | tr '\n' '|')"
+fi
+"$sim" render phantom:shepp-logan:16 --size 32x32 --truth --truth-filter catmull-rom -o "$tmp/cr.png" \
+    >/dev/null 2>"$tmp/err" && [ -s "$tmp/cr.png" ] && ok "render --truth --truth-filter catmull-rom" ||
+    fail "render --truth-filter catmull-rom" "$(cat "$tmp/err")"
+expect_error "bad --truth-filter" "--truth-filter cubic: expected trilinear, smooth, catmull-rom, bspline or analytic" \
+    render phantom:sphere:8 --truth --truth-filter cubic -o "$tmp/x.png"
+expect_error "--truth-filter without the truth" "--truth-filter: only the ground truth has a filter" \
+    compare phantom:sphere:8 --truth-filter smooth
+expect_error "analytic without a function" "has no analytic function" \
+    render phantom:shepp-logan:8 --truth --truth-filter analytic -o "$tmp/x.png"
+expect_error "smooth truth unlit only" "the lit truth reconstructs trilinearly only" \
+    render phantom:sphere:8 --truth --truth-filter smooth --shade phong -o "$tmp/x.png"
+
 # render the truth
 if "$sim" render phantom:sphere:16 --size 48x40 --truth -o "$tmp/truth.png" >"$tmp/out" 2>"$tmp/err" &&
     [ -s "$tmp/truth.png" ] && grep -q '(ground truth)' "$tmp/out"; then
@@ -39,7 +60,7 @@ expect_error "compare takes no --truth" "--truth: unknown option" compare phanto
 dir="$tmp/ray"
 if "$sim" ray phantom:marschner-lobb:41 --size 128x128 -o "$dir" >"$tmp/out" 2>"$tmp/err"; then
     rows=$(wc -l <"$dir/ray.csv")
-    if [ "$(head -n 1 "$dir/ray.csv")" != "t,signal,order0_1,order1_1,order2_1,order0_2,order1_2,order2_2" ] ||
+    if [ "$(head -n 1 "$dir/ray.csv")" != "t,signal,order0_1,order1_1,order2_1,order0_2,order1_2,order2_2,preint2" ] ||
         [ "$rows" -lt 2000 ]; then
         fail "ray: ray.csv" "header '$(head -n 1 "$dir/ray.csv")', $rows lines"
     else
@@ -64,6 +85,37 @@ if "$sim" ray phantom:marschner-lobb:41 --size 128x128 -o "$dir" >"$tmp/out" 2>"
     fi
 else
     fail "ray" "status $?: $(cat "$tmp/err")"
+fi
+
+# preint2's own segments over the smooth signal (Marschner-Lobb's function): the renderers' xi rank point >
+# preint1 > preint2 there, and at k = 2m + 1/2 the segment is the quadratic through the samples of slices 2m,
+# 2m + 1, 2m + 2 (the renderer pairs slices from even k), clamped to their range
+dir="$tmp/rays"
+if "$sim" ray phantom:marschner-lobb:41 --size 128x128 --truth-filter smooth -o "$dir" >"$tmp/out" 2>"$tmp/err" &&
+    grep -q 'smooth signal' "$tmp/out" && [ "$(head -n 1 "$dir/renderers.csv")" = "renderer,k_from,k_to,xi" ]; then
+    if awk -F, 'NR > 1 { xi[$1] = $4 } END { exit !(xi["preint2"] < xi["preint1"] && xi["preint1"] < xi["point"]) }' \
+        "$dir/renderers.csv"; then
+        ok "ray: the renderers' xi on the smooth signal, preint2 < preint1 < point"
+    else
+        fail "ray: renderers' xi" "$(tr '\n' '|' <"$dir/renderers.csv")"
+    fi
+    if awk -F, 'NR == 2 { ra = $1 } NR > 1 && $9 != "nan" {
+            k = $1 + 0; if (k == int(k)) s[k] = $2; if (k - int(k) == 0.5) half[k] = $9 }
+        END { n = 0
+            for (k in half) { m = int(k); if (m % 2) continue
+                f = s[m]; mid = s[m + 1]; b = s[m + 2]; if (b == "") continue
+                A = 2 * f - 4 * mid + 2 * b; B = -3 * f + 4 * mid - b; t = 0.25; p = (A * t + B) * t + f
+                lo = f; if (mid < lo) lo = mid; if (b < lo) lo = b; hi = f; if (mid > hi) hi = mid; if (b > hi) hi = b
+                if (p < lo) p = lo; if (p > hi) p = hi
+                d = p - half[k]; if (d < 0) d = -d; if (d > 1e-3) { print "k " k ": " half[k] " not " p; exit 1 }
+                n++ }
+            exit !(n >= 10) }' "$dir/ray.csv"; then
+        ok "ray: preint2 segments are the even-paired clamped quadratics"
+    else
+        fail "ray: preint2 segments" "not the renderer's slabs"
+    fi
+else
+    fail "ray --truth-filter smooth" "$(cat "$tmp/err")"
 fi
 
 # without gnuplot: one line saying so, the CSVs all the same, status 0

@@ -324,6 +324,16 @@ static void script_turns(int knob, int dir, int detents, int bounces, int base)
     }
 }
 
+/* Detents on one knob from rest (script_turns), read and checked: knob 0 must turn k0 and knob 1 k1, no button. */
+static void turns_read_as(vfp_input_t *in, int knob, int dir, int detents, int bounces, int k0, int k1,
+                          const char *what)
+{
+    tally_t t;
+    script_turns(knob, dir, detents, bounces, 0);
+    run(in, &t, 100);
+    expect(what, &t, k0, k1, "");
+}
+
 int main(void)
 {
     setvbuf(stdout, NULL, _IOLBF, 0);
@@ -407,13 +417,8 @@ int main(void)
     run(&in, &t, 150);
     expect("nothing moves, nothing is reported", &t, 0, 0, "");
 
-    script_turns(0, +1, 12, 0, 0);
-    run(&in, &t, 100);
-    expect("12 clockwise detents at full speed (knob 0, lines 0/1)", &t, 12, 0, "");
-
-    script_turns(0, -1, 12, 0, 0);
-    run(&in, &t, 100);
-    expect("12 counter-clockwise detents at full speed (knob 0)", &t, -12, 0, "");
+    turns_read_as(&in, 0, +1, 12, 0, 12, 0, "12 clockwise detents at full speed (knob 0, lines 0/1)");
+    turns_read_as(&in, 0, -1, 12, 0, -12, 0, "12 counter-clockwise detents at full speed (knob 0)");
 
     script_turns(1, +1, 8, 0, 0);
     script_turns(1, -1, 3, 0, 8);
@@ -434,13 +439,9 @@ int main(void)
     run(&in, &t, 100);
     expect("both knobs turned at once, edges interleaved: +6 and -6", &t, 6, -6, "");
 
-    script_turns(0, +1, 8, 1, 0);
-    run(&in, &t, 100);
-    expect("8 clockwise detents with every edge bouncing once (3 edges for 1)", &t, 8, 0, "");
-
-    script_turns(0, -1, 6, 2, 0);
-    run(&in, &t, 100);
-    expect("6 counter-clockwise detents with every edge bouncing twice (5 edges for 1)", &t, -6, 0, "");
+    turns_read_as(&in, 0, +1, 8, 1, 8, 0, "8 clockwise detents with every edge bouncing once (3 edges for 1)");
+    turns_read_as(&in, 0, -1, 6, 2, -6, 0,
+                  "6 counter-clockwise detents with every edge bouncing twice (5 edges for 1)");
 
     /* half a detent forward and back, twice: a hand resting on the knob */
     for (int i = 0; i < 2; i++) {

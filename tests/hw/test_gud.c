@@ -414,6 +414,19 @@ static int open_display(vfp_display_t *d, const config_t *c, unsigned timeout_ms
     return status;
 }
 
+/* Presents a w x h rectangle at (x, y) of pixels (rows stride bytes apart) and reports the case name: the frame
+ * the gadget then shows must be want. */
+static void present_arrives(vfp_display_t *d, const char *dir, const char *name, uint32_t x, uint32_t y, uint32_t w,
+                            uint32_t h, const uint8_t *pixels, uint32_t stride, const uint8_t *want)
+{
+    char err[512], why[1024];
+    int st = d->ops->present(d, x, y, w, h, pixels, stride, err, sizeof err);
+    if (st != 0)
+        hw_result(0, name, "present() returned %d: %s", st, err);
+    else
+        hw_result(wait_frame(dir, want, 3000, why, sizeof why), name, "%s", why);
+}
+
 static void run_config(const config_t *c, int index)
 {
     char dir[PATH_MAX], name[512], why[1024], err[512], usb[64] = "", driver[64];
@@ -511,12 +524,8 @@ static void run_config(const config_t *c, int index)
     /* 1. a whole frame */
     static uint8_t frame[W * H * 2], expect[W * H * 2];
     gradient(frame, W * 2, 0);
-    int st = d.ops->present(&d, 0, 0, W, H, frame, W * 2, err, sizeof err);
     snprintf(name, sizeof name, "%s: a %dx%d gradient arrives pixel for pixel", base, W, H);
-    if (st != 0)
-        hw_result(0, name, "present() returned %d: %s", st, err);
-    else
-        hw_result(wait_frame(dir, frame, 3000, why, sizeof why), name, "%s", why);
+    present_arrives(&d, dir, name, 0, 0, W, H, frame, W * 2, frame);
 
     /* 2. a rectangle out of a buffer whose rows are padded */
     {
@@ -530,13 +539,9 @@ static void run_config(const config_t *c, int index)
         for (uint32_t y = RY; y < RY + RH; y++)
             for (uint32_t x = RX; x < RX + RW; x++)
                 put_px(expect, W * 2, x, y, get_px(padded, STRIDE, x, y));
-        st = d.ops->present(&d, RX, RY, RW, RH, padded, STRIDE, err, sizeof err);
         snprintf(name, sizeof name, "%s: a %dx%d rectangle at (%d,%d) from rows %d bytes apart changes exactly "
                  "those pixels", base, RW, RH, RX, RY, STRIDE);
-        if (st != 0)
-            hw_result(0, name, "present() returned %d: %s", st, err);
-        else
-            hw_result(wait_frame(dir, expect, 3000, why, sizeof why), name, "%s", why);
+        present_arrives(&d, dir, name, RX, RY, RW, RH, padded, STRIDE, expect);
     }
 
     /* 3. a frame rendered by the core */
@@ -544,11 +549,7 @@ static void run_config(const config_t *c, int index)
     if (render_sphere(expect, err, sizeof err) != 0) {
         hw_result(0, name, "rendering: %s", err);
     } else {
-        st = d.ops->present(&d, 0, 0, W, H, expect, W * 2, err, sizeof err);
-        if (st != 0)
-            hw_result(0, name, "present() returned %d: %s", st, err);
-        else
-            hw_result(wait_frame(dir, expect, 3000, why, sizeof why), name, "%s", why);
+        present_arrives(&d, dir, name, 0, 0, W, H, expect, W * 2, expect);
     }
 
     /* The transfers the presents made, as the gadget saw them (each frame was waited for above). */
@@ -597,7 +598,7 @@ static void run_config(const config_t *c, int index)
             hw_result(0, name, "could not unplug the gadget: %s", why);
         } else {
             gradient(frame, W * 2, 5);
-            st = d.ops->present(&d, 0, 0, W, H, frame, W * 2, err, sizeof err);
+            int st = d.ops->present(&d, 0, 0, W, H, frame, W * 2, err, sizeof err);
             if (st != VFP_DISPLAY_LOST) /* a second try, in case the first only failed */
                 st = d.ops->present(&d, 0, 0, W, H, frame, W * 2, err, sizeof err);
             hw_result(st == VFP_DISPLAY_LOST, name, "present() returned %d (%s)", st, st ? err : "ok");
@@ -612,11 +613,7 @@ static void run_config(const config_t *c, int index)
             hw_result(0, name, "open(): %s", err);
             d.ops = NULL;
         } else {
-            st = d.ops->present(&d, 0, 0, W, H, frame, W * 2, err, sizeof err);
-            if (st != 0)
-                hw_result(0, name, "present() returned %d: %s", st, err);
-            else
-                hw_result(wait_frame(dir, frame, 3000, why, sizeof why), name, "%s", why);
+            present_arrives(&d, dir, name, 0, 0, W, H, frame, W * 2, frame);
         }
         log_read(dir, &log);
         log_mark = log.count;

@@ -4,7 +4,8 @@
 # `volfix-sim render SCENE --hash`, for the default scene and for one with every option changed; the firmware
 # must end through semihosting with status 0. Also: the comparison tells another view's frame apart, a short
 # arena ends in VF_ERR_NOMEM with status 2, an option the build leaves out in VF_ERR_UNSUPPORTED with status 2,
-# the core at -Os calls nothing but libgcc's helpers, and its code stays within the 24 KB budget.
+# the core at -Os calls nothing but libgcc's helpers, and its code stays within the 24 KB budget. Variants with
+# order 2 and with lighting built in render their frames as the host does; a core that lights stays within 32 KB.
 cd "$(dirname "$0")/../.." || exit 2
 build=${BUILD:-build}
 sim=$build/volfix-sim
@@ -153,4 +154,34 @@ if firmware order2 "$order2" 8 "" "$features"; then
     calls=$(arm-none-eabi-nm -u "$tmp/core2.o" | awk '{ print $2 }' | grep -v '^__aeabi_' | tr '\n' ' ')
     if [ -z "$calls" ]; then ok "the core with order 2 at -Os calls nothing but libgcc's __aeabi_ helpers"; else
         fail "core with order 2 calls" "calls outside the core: $calls"; fi
+fi
+
+# 6. lighting, which the default firmware's core leaves out (-DVF_LIGHTING=0), built in: a lit frame of each lit
+# path equals the host's, and the core with lighting still calls nothing but libgcc's helpers. (a) Everything of
+# lighting, preint1's front-weighted tables included (-DVF_LIGHTING=1): a lit preint1 frame; its core's size as
+# linked is reported. (b) Lighting without the lit pre-integrated tables (-DVF_LIT_TABLES=0, about 4.8 KB): a lit
+# point frame, and that core as linked within 32 KB, the budget of a core that lights.
+# core_text DIR: the core's .text as linked into DIR's firmware
+core_text() { sh boards/mps2-an386/sizes.sh arm-none-eabi- "$1" | sed -n 's/^core as linked into the firmware.*: text \([0-9]*\),.*/\1/p'; }
+lit_light="--shade phong --light 30,20 --material 0.2,0.6,0.3,12"
+features=$(${MAKE:-make} -s --no-print-directory print-MCU_FEATURES | sed 's/-DVF_LIGHTING=0/-DVF_LIGHTING=1/')
+lit="$volume --size 64x64 --format rgb565 --mode preint1 --preset ramp --view 30,20 $lit_light"
+if firmware lit "$lit" 8 "" "$features"; then
+    check_frame lit "$lit"
+    arm-none-eabi-ld -r -o "$tmp/core-lit.o" "$mcu-lit"/core/*.o
+    calls=$(arm-none-eabi-nm -u "$tmp/core-lit.o" | awk '{ print $2 }' | grep -v '^__aeabi_' | tr '\n' ' ')
+    if [ -z "$calls" ]; then ok "the core with lighting at -Os calls nothing but libgcc's __aeabi_ helpers"; else
+        fail "core with lighting calls" "calls outside the core: $calls"; fi
+    text=$(core_text "$mcu-lit")
+    if [ -n "$text" ]; then ok "core .text with all of lighting, as linked: $text bytes (reported)"; else
+        fail "core .text with lighting" "sizes.sh printed no linked size"; fi
+fi
+features=$(${MAKE:-make} -s --no-print-directory print-MCU_FEATURES |
+    sed 's/-DVF_LIGHTING=0/-DVF_LIGHTING=1 -DVF_LIT_TABLES=0/')
+litpoint="$volume --size 64x64 --format rgb565 --mode point --preset ramp --view 30,20 $lit_light"
+if firmware litpoint "$litpoint" 8 "" "$features"; then
+    check_frame litpoint "$litpoint"
+    text=$(core_text "$mcu-litpoint")
+    if [ -n "$text" ] && [ "$text" -le 32768 ]; then ok "core .text with lighting but not its tables, as linked: $text bytes <= 32 KB"; else
+        fail "core .text with lighting" "${text:-no} bytes as linked, over the 32 KB (32768) budget"; fi
 fi

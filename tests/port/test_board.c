@@ -113,7 +113,18 @@ static void rpi4_spi_st7789(void)
     CHECK_EQ(b.buttons[0].active_low, 1);
     CHECK_EQ(b.buttons[0].debounce_ms, 10);
     CHECK_EQ(b.buttons[1].line, 13);
-    CHECK_EQ(b.buttons[1].action, VFP_ACT_NEXT_MODE);
+    CHECK_EQ(b.buttons[1].action, VFP_ACT_CYCLE_KNOBS);
+    /* two knobs, three pages: the view, the light, zoom and shading */
+    CHECK_EQ(b.knobs[0].cycle_count, 3);
+    CHECK_EQ(b.knobs[0].cycle[0], VFP_ACT_AZIMUTH);
+    CHECK_NEAR(b.knobs[0].cycle_step[0], 5, 0);
+    CHECK_EQ(b.knobs[0].cycle[1], VFP_ACT_LIGHT_AZIMUTH);
+    CHECK_NEAR(b.knobs[0].cycle_step[1], 10, 0);
+    CHECK_EQ(b.knobs[0].cycle[2], VFP_ACT_ZOOM);
+    CHECK_EQ(b.knobs[1].cycle_count, 3);
+    CHECK_EQ(b.knobs[1].cycle[1], VFP_ACT_LIGHT_ELEVATION);
+    CHECK_EQ(b.knobs[1].cycle[2], VFP_ACT_SHADE);
+    CHECK_NEAR(b.knobs[1].cycle_step[2], 5, 0); /* no step given: the default */
     CHECK_EQ(b.idle_ms, 300);
     CHECK_EQ(b.overlay, 0);
     CHECK(b.threads >= 1);
@@ -145,7 +156,14 @@ static void rpi5_hdmi(void)
     CHECK_EQ(b.buttons[0].action, VFP_ACT_NEXT_PRESET);
     CHECK_EQ(b.buttons[1].action, VFP_ACT_NEXT_MODE);
     CHECK_EQ(b.buttons[2].action, VFP_ACT_RESET);
-    CHECK_EQ(b.buttons[3].action, VFP_ACT_OVERLAY);
+    CHECK_EQ(b.buttons[3].action, VFP_ACT_CYCLE_KNOBS);
+    CHECK_EQ(b.knobs[0].cycle_count, 1);
+    CHECK_EQ(b.knobs[2].cycle_count, 3);
+    CHECK_EQ(b.knobs[2].cycle[1], VFP_ACT_LIGHT_AZIMUTH);
+    CHECK_EQ(b.knobs[2].cycle[2], VFP_ACT_PRESET);
+    CHECK_EQ(b.knobs[3].cycle_count, 3);
+    CHECK_EQ(b.knobs[3].cycle[1], VFP_ACT_LIGHT_ELEVATION);
+    CHECK_EQ(b.knobs[3].cycle[2], VFP_ACT_SHADE);
     CHECK_EQ(b.buttons[3].line, 20);
     CHECK_EQ(b.buttons[3].debounce_ms, 10);
     CHECK_EQ(b.buttons[3].active_low, 1);
@@ -166,7 +184,12 @@ static void rpi_zero2w_gud(void)
     CHECK_EQ(b.knobs[0].action, VFP_ACT_AZIMUTH);
     CHECK_EQ(b.button_count, 1);
     CHECK_EQ(b.buttons[0].line, 22);
-    CHECK_EQ(b.buttons[0].action, VFP_ACT_NEXT_PRESET);
+    CHECK_EQ(b.buttons[0].action, VFP_ACT_CYCLE_KNOBS);
+    static const vfp_action_t zero_cycle[6] = {VFP_ACT_AZIMUTH, VFP_ACT_ELEVATION, VFP_ACT_PRESET,
+                                               VFP_ACT_LIGHT_AZIMUTH, VFP_ACT_LIGHT_ELEVATION, VFP_ACT_SHADE};
+    CHECK_EQ(b.knobs[0].cycle_count, 6);
+    for (int k = 0; k < 6; k++)
+        CHECK_EQ(b.knobs[0].cycle[k], zero_cycle[k]);
     CHECK_EQ(b.threads, 4);
 }
 
@@ -182,7 +205,11 @@ static void host_sdl(void)
     CHECK_EQ(b.height, 480);
     CHECK_EQ(b.format, VF_FORMAT_XRGB8888);
     CHECK(strcmp(b.input, "sdl") == 0);
-    CHECK_EQ(b.knob_count, 5);
+    CHECK_EQ(b.knob_count, 7);
+    CHECK_EQ(b.knobs[5].action, VFP_ACT_LIGHT_AZIMUTH);
+    CHECK_EQ(b.knobs[5].key_up, 'l');
+    CHECK_EQ(b.knobs[6].action, VFP_ACT_LIGHT_ELEVATION);
+    CHECK_EQ(b.knobs[6].key_down, 'k');
     CHECK_EQ(b.knobs[0].key_up, (1 << 30) | 79);   /* SDLK_RIGHT */
     CHECK_EQ(b.knobs[0].key_down, (1 << 30) | 80); /* SDLK_LEFT */
     CHECK_EQ(b.knobs[1].key_up, (1 << 30) | 82);   /* SDLK_UP */
@@ -191,7 +218,9 @@ static void host_sdl(void)
     CHECK_EQ(b.knobs[3].key_down, '[');
     CHECK_EQ(b.knobs[3].action, VFP_ACT_LEVEL);
     CHECK_EQ(b.knobs[4].action, VFP_ACT_WIDTH);
-    CHECK_EQ(b.button_count, 5);
+    CHECK_EQ(b.button_count, 6);
+    CHECK_EQ(b.buttons[5].code, 's');
+    CHECK_EQ(b.buttons[5].action, VFP_ACT_TOGGLE_SHADE);
     CHECK_EQ(b.buttons[0].code, ' ');
     CHECK_EQ(b.buttons[0].action, VFP_ACT_NEXT_PRESET);
     CHECK_EQ(b.buttons[1].code, 'm');
@@ -222,9 +251,13 @@ static void host_headless(void)
     CHECK_EQ(b.knobs[1].action, VFP_ACT_ELEVATION);
     CHECK_EQ(b.knobs[2].action, VFP_ACT_ZOOM);
     CHECK_EQ(b.knobs[3].action, VFP_ACT_LEVEL);
-    CHECK_EQ(b.button_count, 2);
+    CHECK_EQ(b.button_count, 4);
     CHECK_EQ(b.buttons[0].action, VFP_ACT_NEXT_PRESET);
     CHECK_EQ(b.buttons[1].action, VFP_ACT_NEXT_MODE);
+    CHECK_EQ(b.buttons[2].action, VFP_ACT_TOGGLE_SHADE);
+    CHECK_EQ(b.buttons[3].action, VFP_ACT_CYCLE_KNOBS);
+    CHECK_EQ(b.knobs[3].cycle_count, 4);
+    CHECK_EQ(b.knobs[3].cycle[3], VFP_ACT_SHADE);
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
@@ -390,18 +423,36 @@ static void typo_key(void)
 static void bad_action(void)
 {
     EXPECT_ERROR("spin.board", GOOD_HEAD "\nknob.0.action = spin\n", 4,
-                 "unknown action 'spin' (expected azimuth, elevation, roll, zoom, level or width)");
+                 "unknown action 'spin' (expected azimuth, elevation, roll, zoom, level, width, light-azimuth, "
+                 "light-elevation, shade or preset)");
     EXPECT_ERROR("spin2.board", GOOD_HEAD "button.0.action = explode\n", 3,
-                 "unknown action 'explode' (expected next-preset, next-mode, reset, overlay or quit)");
+                 "unknown action 'explode' (expected next-preset, next-mode, reset, overlay, quit, toggle-shade or "
+                 "cycle-knobs)");
     EXPECT_ERROR("none.board", GOOD_HEAD "button.0.action = none\n", 3, "unknown action 'none'");
 }
 
 static void knob_action_on_button(void)
 {
     EXPECT_ERROR("kb.board", GOOD_HEAD "button.0.action = zoom\n", 3,
-                 "'zoom' is a knob action, not for a button (expected next-preset, next-mode, reset, overlay or quit)");
+                 "'zoom' is a knob action, not for a button (expected next-preset, next-mode, reset, overlay, quit, "
+                 "toggle-shade or cycle-knobs)");
     EXPECT_ERROR("bk.board", GOOD_HEAD "knob.0.action = quit\n", 3,
                  "'quit' is a button action, not for a knob (expected azimuth,");
+}
+
+static void bad_cycle(void)
+{
+    EXPECT_ERROR("c1.board", GOOD_HEAD "knob.0.action = zoom\nknob.0.cycle = spin\n", 4, "unknown action 'spin'");
+    EXPECT_ERROR("c2.board", GOOD_HEAD "knob.0.action = zoom\nknob.0.cycle = quit\n", 4,
+                 "'quit' is a button action, not for a knob");
+    EXPECT_ERROR("c3.board", GOOD_HEAD "knob.0.action = zoom\nknob.0.cycle = level:0\n", 4,
+                 "knob.0.cycle: expected ACTION[:STEP] with a non-zero STEP, found 'level:0'");
+    EXPECT_ERROR("c4.board", GOOD_HEAD "knob.0.action = zoom\nknob.0.cycle = level, roll, shade, preset, width, zoom\n",
+                 4, "knob.0.cycle: expected at most 5 actions (ACTION[:STEP], ...), found more");
+    EXPECT_ERROR("c5.board", GOOD_HEAD "knob.0.action = zoom\nknob.0.cycle = ,\n", 4,
+                 "knob.0.cycle: expected ACTION[:STEP], ... (knob actions:");
+    EXPECT_ERROR("c6.board", GOOD_HEAD "knob.0.action = zoom\nknob.0.cycle = level\nknob.0.cycle = roll\n", 5,
+                 "knob.0.cycle");
 }
 
 static void missing_action(void)
@@ -547,7 +598,8 @@ CHECK_CASES({"every_board_loads", every_board_loads}, {"rpi4_spi_st7789", rpi4_s
             {"comments_spaces_and_crlf", comments_spaces_and_crlf}, {"evdev_board", evdev_board},
             {"sdl_key_names", sdl_key_names}, {"action_names", action_names}, {"typo_key", typo_key},
             {"bad_action", bad_action}, {"knob_action_on_button", knob_action_on_button},
-            {"missing_action", missing_action}, {"gpiod_needs_chip_and_lines", gpiod_needs_chip_and_lines},
+            {"bad_cycle", bad_cycle}, {"missing_action", missing_action},
+            {"gpiod_needs_chip_and_lines", gpiod_needs_chip_and_lines},
             {"evdev_and_sdl_needs", evdev_and_sdl_needs}, {"non_dense_indices", non_dense_indices},
             {"bad_format_and_rotation", bad_format_and_rotation}, {"bad_numbers", bad_numbers},
             {"bad_lines", bad_lines}, {"whole_file_problems", whole_file_problems});

@@ -139,6 +139,87 @@ static void buttons_cycle_reset_toggle_and_quit(void)
     CHECK_EQ(press(&c, &home, &b, 0), 0);
 }
 
+/* One knob and three buttons, as a small board has: the knob cycles through the view, the light, shading and the
+ * presets; a button cycles it, one toggles shading, one resets. */
+static void light_shade_and_cycling_knobs(void)
+{
+    vfp_board_t b;
+    memset(&b, 0, sizeof b);
+    b.knob_count = 2;
+    b.knobs[0].action = VFP_ACT_AZIMUTH;
+    b.knobs[0].step = 5;
+    b.knobs[0].cycle_count = 5;
+    static const vfp_action_t cycle[5] = {VFP_ACT_AZIMUTH, VFP_ACT_LIGHT_AZIMUTH, VFP_ACT_LIGHT_ELEVATION,
+                                          VFP_ACT_SHADE, VFP_ACT_PRESET};
+    static const double steps[5] = {5, 100, 30, 5, 5};
+    for (int i = 0; i < 5; i++)
+        b.knobs[0].cycle[i] = cycle[i], b.knobs[0].cycle_step[i] = steps[i];
+    b.knobs[1].action = VFP_ACT_ZOOM; /* no cycle: the button leaves it alone */
+    b.knobs[1].step = 10;
+    b.knobs[1].cycle_count = 1;
+    b.button_count = 3;
+    b.buttons[0].action = VFP_ACT_CYCLE_KNOBS;
+    b.buttons[1].action = VFP_ACT_TOGGLE_SHADE;
+    b.buttons[2].action = VFP_ACT_RESET;
+    vfp_controls_t home = start(), c;
+    home.shade = -1;
+    c = home;
+    double step;
+
+    CHECK_EQ(turn(&c, &home, &b, 0, 2), VFP_CHANGED_VIEW); /* page 0: azimuth */
+    CHECK_NEAR(c.azimuth, 40, 0);
+    CHECK_EQ(press(&c, &home, &b, 0), VFP_CHANGED_KNOBS);
+    CHECK_EQ(vfp_controls_knob_action(&c, &b, 0, &step), VFP_ACT_LIGHT_AZIMUTH);
+    CHECK_NEAR(step, 100, 0);
+    CHECK_EQ(vfp_controls_knob_action(&c, &b, 1, &step), VFP_ACT_ZOOM);
+    CHECK_EQ(turn(&c, &home, &b, 0, 2), VFP_CHANGED_LIGHT); /* 200 degrees: wraps to -160 */
+    CHECK_NEAR(c.light_azimuth, -160, 1e-12);
+    CHECK_NEAR(c.azimuth, 40, 0);
+    turn(&c, &home, &b, 0, -4);
+    CHECK_NEAR(c.light_azimuth, 160, 1e-12);
+    press(&c, &home, &b, 0);
+    CHECK_EQ(turn(&c, &home, &b, 0, 2), VFP_CHANGED_LIGHT);
+    CHECK_NEAR(c.light_elevation, 60, 0);
+    CHECK_EQ(turn(&c, &home, &b, 0, 2), VFP_CHANGED_LIGHT); /* stops straight above */
+    CHECK_NEAR(c.light_elevation, 90, 0);
+    CHECK_EQ(turn(&c, &home, &b, 0, 1), 0);
+    press(&c, &home, &b, 0);
+    c.shade_now = 0;
+    CHECK_EQ(turn(&c, &home, &b, 0, 1), VFP_CHANGED_LIGHT); /* shade knob: clockwise on */
+    CHECK_EQ(c.shade, 1);
+    c.shade_now = 1;
+    CHECK_EQ(turn(&c, &home, &b, 0, 3), 0); /* on already */
+    CHECK_EQ(turn(&c, &home, &b, 0, -1), VFP_CHANGED_LIGHT);
+    CHECK_EQ(c.shade, 0);
+    press(&c, &home, &b, 0);
+    CHECK_EQ(turn(&c, &home, &b, 0, 3), VFP_CHANGED_TF); /* preset knob: one preset a turn */
+    CHECK_EQ(c.preset, 1);
+    turn(&c, &home, &b, 0, -1);
+    turn(&c, &home, &b, 0, -1);
+    CHECK_EQ(c.preset, 2); /* back round */
+    CHECK_EQ(press(&c, &home, &b, 0), VFP_CHANGED_KNOBS); /* after the last: azimuth again */
+    CHECK_EQ(vfp_controls_knob_action(&c, &b, 0, &step), VFP_ACT_AZIMUTH);
+    CHECK_NEAR(step, 5, 0);
+
+    /* the shade button turns over what is shown, whatever the transfer function says */
+    c.shade = -1;
+    c.shade_now = 1;
+    CHECK_EQ(press(&c, &home, &b, 1), VFP_CHANGED_LIGHT);
+    CHECK_EQ(c.shade, 0);
+    c.shade_now = 0;
+    press(&c, &home, &b, 1);
+    CHECK_EQ(c.shade, 1);
+
+    /* reset brings the light home too */
+    CHECK_EQ(press(&c, &home, &b, 2), VFP_CHANGED_VIEW | VFP_CHANGED_LIGHT);
+    CHECK_NEAR(c.light_azimuth, 0, 0);
+    CHECK_NEAR(c.light_elevation, 0, 0);
+    CHECK_EQ(press(&c, &home, &b, 2), 0);
+
+    b.knobs[0].cycle_count = 1; /* a board without cycles: the button does nothing */
+    CHECK_EQ(press(&c, &home, &b, 0), 0);
+}
+
 static void view_in_binary_angles_with_the_panel_rotation(void)
 {
     vfp_controls_t c = start();
@@ -259,6 +340,7 @@ static void overlay_names_the_edges(void)
 
 CHECK_CASES({"knobs_turn_the_view_and_wrap", knobs_turn_the_view_and_wrap},
             {"overlay_names_the_edges", overlay_names_the_edges},
+            {"light_shade_and_cycling_knobs", light_shade_and_cycling_knobs},
             {"zoom_compounds_and_clamps", zoom_compounds_and_clamps},
             {"level_and_width_move_the_transfer_function", level_and_width_move_the_transfer_function},
             {"buttons_cycle_reset_toggle_and_quit", buttons_cycle_reset_toggle_and_quit},

@@ -106,6 +106,30 @@ else
         fail "level: the function moved a whole window" "no frame with --tf-move 1,1"
 fi
 
+# 3b. Lighting from the knobs and buttons (tests/viewer/light.script): shading toggled on, the light moved by a
+# knob that a button cycles, shading off and on from that knob; every frame (previews too) equals volfix-sim's
+# picture with the lighting options its log line gives.
+run_viewer light --board "$board" phantom:marschner-lobb:64 --preset sharp --script tests/viewer/light.script \
+    --device "$tmp/light" --log "$tmp/light.log"
+if [ $status -ne 0 ]; then
+    fail "light runs" "status $status: $(cat "$tmp/light.err")"
+else
+    frames_match "light frames equal volfix-sim" phantom:marschner-lobb:64 "$tmp/light" "$tmp/light.log"
+    last=$(tail -n 1 "$tmp/light.log")
+    case "$last" in
+    *" full "*"--tf-move 0.02,1 --preset sharp --mode preint1 --shade phong --light 29.99"*",-20.00"*)
+        ok "light: shaded, the light at 30,-20, the knob back on level" ;;
+    *) fail "light: shaded, the light at 30,-20, the knob back on level" "last frame: $last" ;;
+    esac
+    head -n 1 "$tmp/light.log" | grep -q -- '--shade none' && ok "light: the session starts unlit" ||
+        fail "light: the session starts unlit" "first frame: $(head -n 1 "$tmp/light.log")"
+    # after the light reached 30,-20: a frame unlit (the shade knob turned back), then lit again
+    after=$(grep -n -- '--light 29.99[0-9]*,-20.00' "$tmp/light.log" | head -n 1 | cut -d: -f1)
+    off=$(sed -n "${after:-1},\$p" "$tmp/light.log" | grep -c -- '--shade none')
+    [ -n "$after" ] && [ "$off" -ge 1 ] && ok "light: shading turned off from the knob, then on again" ||
+        fail "light: shading turned off from the knob, then on again" "$(cut -d: -f2- "$tmp/light.log" | tr '\n' '|')"
+fi
+
 # 4. A panel mounted a quarter turn, not square, without the preview: the view is rolled back by the mounting.
 sed -e 's/^display.width = .*/display.width = 200/' -e 's/^display.height = .*/display.height = 120/' \
     -e 's/^display.format = .*/display.format = xrgb8888\ndisplay.rotation = 90/' "$board" >"$tmp/rot.board"

@@ -12,6 +12,7 @@
  *      INCLUDES
  *********************/
 #include <errno.h>
+#include <math.h>
 #include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -48,16 +49,18 @@ static const unsigned char *pixel(const image_t *img, int x, int y, flip_t flip)
 static int lum(const unsigned char *p);
 static int inside(const unsigned char *p, int threshold);
 static overlap_t overlap(const image_t *a, const image_t *b, flip_t flip, int dx, int dy, int threshold);
+static double psnr_of(const image_t *a, const image_t *b, flip_t flip, int dx, int dy);
 
 static const char *const flip_names[FLIP_COUNT] = {"none", "lr", "ud", "both"};
 
 static const char usage[] =
-    "usage: peer_compare A B [--threshold T] [--flip none|lr|ud|both] [--shift N] [-o SIDE.png] [--json]\n"
+    "usage: peer_compare A B [--threshold T] [--flip none|lr|ud|both] [--shift N] [-o SIDE.png] [--pair] [--json]\n"
     "Compare two images of one size (PNG, or binary PGM/PPM): the silhouettes (pixels whose brightest channel\n"
     "is above T, default 0) as intersection over union for A unflipped and mirrored; then, after the flip\n"
     "given (default: the one with the best overlap), the luminance difference; -o writes A flipped, B and the\n"
     "silhouettes (white both, red A only, green B only) side by side. --shift N also reports the whole-pixel\n"
-    "shift of A, up to N pixels each way, whose silhouette overlaps B's best (A's pixel x+dx,y+dy on B's x,y).\n";
+    "shift of A, up to N pixels each way, whose silhouette overlaps B's best (A's pixel x+dx,y+dy on B's x,y),\n"
+    "and the shift with the best luminance PSNR. --pair: -o writes A and B only.\n";
 
 /**********************
  *   GLOBAL FUNCTIONS
@@ -66,7 +69,7 @@ static const char usage[] =
 int main(int argc, char **argv)
 {
     const char *path_a = NULL, *path_b = NULL, *out = NULL;
-    int threshold = 0, json = 0, shift = 0;
+    int threshold = 0, json = 0, shift = 0, pair = 0;
     flip_t flip = FLIP_BEST;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -104,6 +107,8 @@ int main(int argc, char **argv)
         } else if (strcmp(a, "-o") == 0 && v) {
             out = v;
             i++;
+        } else if (strcmp(a, "--pair") == 0) {
+            pair = 1;
         } else if (strcmp(a, "--json") == 0) {
             json = 1;
         } else if (a[0] != '-' && !path_a) {
@@ -149,26 +154,43 @@ int main(int argc, char **argv)
         }
 
     long sum = 0, same = 0, n = (long)a.width * a.height;
+    double sum2 = 0;
     int max = 0;
     for (int y = 0; y < a.height; y++)
         for (int x = 0; x < a.width; x++) {
             int d = abs(lum(pixel(&a, x, y, used)) - lum(pixel(&b, x, y, FLIP_NONE)));
             sum += d;
+            sum2 += (double)d * d;
             same += d == 0;
             max = d > max ? d : max;
         }
 
+    /* PSNR of the luminance, 8-bit peak; identical images have none (infinite): reported as 999 */
+    const double psnr = sum2 > 0 ? 10 * log10(255.0 * 255.0 * n / sum2) : 999;
+    /* the luminance's own best whole-pixel shift (it may differ from the silhouettes') */
+    double psnr_shifted = psnr;
+    int psnr_dx = 0, psnr_dy = 0;
+    for (int dy = -shift; dy <= shift; dy++)
+        for (int dx = -shift; dx <= shift; dx++) {
+            const double p = psnr_of(&a, &b, used, dx, dy);
+            if (p > psnr_shifted) {
+                psnr_shifted = p;
+                psnr_dx = dx;
+                psnr_dy = dy;
+            }
+        }
     if (json) {
         printf("{\"a\": \"%s\", \"b\": \"%s\", \"width\": %d, \"height\": %d, \"threshold\": %d, \"iou\": {", path_a,
                path_b, a.width, a.height, threshold);
         for (int f = 0; f < FLIP_COUNT; f++)
             printf("%s\"%s\": %.4f", f ? ", " : "", flip_names[f], ov[f].iou);
         printf("}, \"best_flip\": \"%s\", \"flip\": \"%s\", \"pixels_a\": %ld, \"pixels_b\": %ld, \"pixels_both\": %ld, "
-               "\"mean_abs\": %.3f, \"max_abs\": %d, \"identical\": %.4f",
+               "\"mean_abs\": %.3f, \"max_abs\": %d, \"identical\": %.4f, \"psnr\": %.2f",
                flip_names[best], flip_names[used], ov[used].a, ov[used].b, ov[used].both, (double)sum / n, max,
-               (double)same / n);
+               (double)same / n, psnr);
         if (shift)
-            printf(", \"best_shift\": [%d, %d], \"iou_shifted\": %.4f", best_dx, best_dy, shifted.iou);
+            printf(", \"best_shift\": [%d, %d], \"iou_shifted\": %.4f, \"psnr_shift\": [%d, %d], \"psnr_shifted\": %.2f",
+                   best_dx, best_dy, shifted.iou, psnr_dx, psnr_dy, psnr_shifted);
         printf("}\n");
     } else {
         printf("peer_compare: %s against %s, %dx%d, silhouette = brightest channel above %d\n", path_a, path_b,
@@ -177,15 +199,17 @@ int main(int argc, char **argv)
             printf("  A flipped %-4s: IoU %.4f (A %ld px, B %ld px, both %ld)%s\n", flip_names[f], ov[f].iou, ov[f].a,
                    ov[f].b, ov[f].both, f == best ? "  <- best" : "");
         if (shift)
-            printf("  after flip %s, the best shift within %d px: A's x%+d,y%+d on B's x,y, IoU %.4f\n",
-                   flip_names[used], shift, best_dx, best_dy, shifted.iou);
-        printf("  after flip %s: luminance |A - B| mean %.3f, max %d of 255, %.2f%% of pixels identical\n",
-               flip_names[used], (double)sum / n, max, 100.0 * same / n);
+            printf("  after flip %s, the best shift within %d px: A's x%+d,y%+d on B's x,y, IoU %.4f; the luminance's\n"
+                   "  best: x%+d,y%+d, PSNR %.2f dB\n",
+                   flip_names[used], shift, best_dx, best_dy, shifted.iou, psnr_dx, psnr_dy, psnr_shifted);
+        printf("  after flip %s: luminance |A - B| mean %.3f, max %d of 255, %.2f%% of pixels identical, PSNR %.2f dB\n",
+               flip_names[used], (double)sum / n, max, 100.0 * same / n, psnr);
     }
 
     int status = 0;
     if (out) {
-        image_t side = {3 * a.width, a.height, malloc((size_t)9 * a.width * a.height)};
+        const int panels = pair ? 2 : 3;
+        image_t side = {panels * a.width, a.height, malloc((size_t)3 * panels * a.width * a.height)};
         if (!side.rgb) {
             fprintf(stderr, "peer_compare: out of memory\n");
             return 2;
@@ -199,7 +223,8 @@ int main(int argc, char **argv)
                                          (unsigned char)(in_a && in_b ? 255 : 0)};
                 memcpy(row + 3 * x, pa, 3);
                 memcpy(row + 3 * (a.width + x), pb, 3);
-                memcpy(row + 3 * (2 * a.width + x), mask, 3);
+                if (!pair)
+                    memcpy(row + 3 * (2 * a.width + x), mask, 3);
             }
         status = write_png(out, &side);
         free(side.rgb);
@@ -220,6 +245,21 @@ static const unsigned char *pixel(const image_t *img, int x, int y, flip_t flip)
     if (flip == FLIP_UD || flip == FLIP_BOTH)
         y = img->height - 1 - y;
     return img->rgb + ((size_t)y * img->width + x) * 3;
+}
+
+/* The luminance PSNR (8-bit peak) of A flipped, its pixel x+dx,y+dy taken for B's x,y (outside A: black), against
+ * B; 999 for identical images. */
+static double psnr_of(const image_t *a, const image_t *b, flip_t flip, int dx, int dy)
+{
+    double sum2 = 0;
+    for (int y = 0; y < b->height; y++)
+        for (int x = 0; x < b->width; x++) {
+            int xa = x + dx, ya = y + dy;
+            int la = xa >= 0 && xa < a->width && ya >= 0 && ya < a->height ? lum(pixel(a, xa, ya, flip)) : 0;
+            double d = la - lum(pixel(b, x, y, FLIP_NONE));
+            sum2 += d * d;
+        }
+    return sum2 > 0 ? 10 * log10(255.0 * 255.0 * b->width * b->height / sum2) : 999;
 }
 
 /* Silhouettes of A (flipped, then its pixel x+dx,y+dy taken for B's x,y; outside A is background) and B. */

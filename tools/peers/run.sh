@@ -72,8 +72,15 @@ for t in 0 20 128; do
     tf "$name-rgb" $t 0.99609375
 done
 
+# ---- lighting: VolPack's Phong frame's light and material for volfix's lit columns ----
+# VolPack's light (0.3, 0.3, 1.0), set in eye space, lights its images from the upper left: a sphere's upper left
+# is its brightest part (docs/peers.md, "The light"). In volfix's terms, relative to the viewer, that is azimuth
+# -atan(0.3 / 1.0) = -16.70 degrees (from the left) and elevation asin(0.3 / |(0.3, 0.3, 1)|) = 16.03
+# (from above); make volpack-check measures it on VolPack's own example (the other signs fit worse).
+vf_light="--shade phong --light -16.70,16.03 --material 0.18,0.35,0.39,10"
+
 # ---- scenes: name, VolPack's volume arguments, volfix's volume, dims, transfer function ----
-scenes="brainsmall-ramp brainsmall-sparse engine-ramp engine-sparse"
+scenes=${SCENES:-brainsmall-ramp brainsmall-sparse engine-ramp engine-sparse}
 scene() { # sets vp_vol, vf_vol, dims, tfname, zoom for scene $1
     case $1 in
         brainsmall-*) vp_vol="$data/brainsmall.den"; vf_vol="$data/brainsmall.nhdr"; dims=128,128,84 ;;
@@ -100,13 +107,16 @@ command_for() {
     case $1 in
         vp-*) echo "$peer $vp_vol --tf $out/$tfname.tf --shading ${1#vp-} --size 512x512 --window 0.75" \
                    "--angle $2 --step -2 --frames $3 --rounds 1 --json" ;;
-        vf-*-rgb) m=${1#vf-}; echo "$sim bench $vf_vol --tf $out/$tfname-rgb.tf --mode ${m%-rgb} --size 512x512" \
-                   "--zoom $zoom --view $(azimuth "$2"),0 --frames $3 --rounds 1 --threads 1 --json" ;;
-        vf-*) echo "$sim bench $vf_vol --tf $out/$tfname.tf --mode ${1#vf-} --size 512x512 --zoom $zoom" \
-                   "--view $(azimuth "$2"),0 --frames $3 --rounds 1 --threads 1 --json" ;;
+        vf-*)
+            m=${1#vf-} rgb="" lit=""
+            case $m in *-rgb) rgb=-rgb m=${m%-rgb} ;; esac
+            case $m in *-lit) lit=$vf_light m=${m%-lit} ;; esac
+            echo "$sim bench $vf_vol --tf $out/$tfname$rgb.tf --mode $m --size 512x512 --zoom $zoom" \
+                 "--view $(azimuth "$2"),0 --frames $3 --rounds 1 --threads 1 --json $lit" ;;
     esac
 }
-renderers="vp-phong vp-rgb vf-point vf-point-rgb vf-preint1 vf-preint1-rgb vf-preclass vf-preclass-rgb"
+renderers="vp-phong vp-rgb"
+for m in point preint1 preclass point-lit preint1-lit preclass-lit; do renderers="$renderers vf-$m vf-$m-rgb"; done
 
 # ---- the image checks ----
 say "checking the VolPack client against VolPack's own image (brainsmall.volpack-check.ppm)"
@@ -218,12 +228,14 @@ END {
     nc = 0
     for (i = 1; i <= nr; i++) {
         r = rd[i]
+        if (r ~ /^vf-/) {
+            name = substr(r, 4); sub(/-lit/, " lit", name); sub(/-rgb/, " RGB", name); title[r] = "volfix " name
+        }
         if (r ~ /-rgb$/ && r ~ /^vf-/) {
             differs = 0
             for (j = 1; j <= ns; j++) if (count_of(sc[j], r) != count_of(sc[j], substr(r, 1, length(r) - 4))) differs = 1
             if (!differs) continue
-            title[r] = "volfix " substr(r, 4, length(r) - 7) " RGB"
-        } else if (r ~ /^vf-/) title[r] = "volfix " substr(r, 4) (r == "vf-preclass" ? " (unlit)" : "")
+        }
         col[++nc] = r
     }
     printf "| scene |"; for (c = 1; c <= nc; c++) printf " %s |", title[col[c]]; printf "\n|---|"
@@ -237,19 +249,34 @@ END {
         }
         printf "\n"
     }
-    printf "\nvolfix / VolPack: instructions per frame, then ms per frame (median over rounds of the ratio within a round)\n\n"
-    printf "| scene |"
-    for (c = 1; c <= nc; c++) if (col[c] ~ /^vf-/) printf " %s / Phong | %s / RGB |", substr(title[col[c]], 8), substr(title[col[c]], 8)
-    printf "\n|---|"; for (c = 1; c <= nc; c++) if (col[c] ~ /^vf-/) printf "---|---|"; printf "\n"
+    # ratios: instructions; ms (the median over rounds of the ratio within a round). A renderer whose RGB
+    # variant was not timed (the same count as grey) stands for it.
+    printf "\nUnlit volfix / VolPack: instructions, then ms per frame\n\n| scene |"
+    for (c = 1; c <= nc; c++) if (col[c] ~ /^vf-/ && col[c] !~ /-lit/) printf " %s / Phong | %s / RGB |", substr(title[col[c]], 8), substr(title[col[c]], 8)
+    printf "\n|---|"; for (c = 1; c <= nc; c++) if (col[c] ~ /^vf-/ && col[c] !~ /-lit/) printf "---|---|"; printf "\n"
     for (j = 1; j <= ns; j++) {
         s = sc[j]; name = s; sub(/-/, " ", name); printf "| %s |", name
         for (c = 1; c <= nc; c++) {
-            r = col[c]; if (r !~ /^vf-/) continue
+            r = col[c]; if (r !~ /^vf-/ || r ~ /-lit/) continue
             q = ((s, r) in timed) ? r : substr(r, 1, length(r) - 4)
             for (v = 1; v <= 2; v++) {
                 p = v == 1 ? "vp-phong" : "vp-rgb"
                 printf " %.2f; %.2f |", count_of(s, q) / count_of(s, p), ratio(s, q, p)
             }
+        }
+        printf "\n"
+    }
+    printf "\nLit volfix against unlit volfix (the same mode and channels) and against VolPack Phong: instructions, then ms\n\n| scene |"
+    for (c = 1; c <= nc; c++) if (col[c] ~ /-lit/) printf " %s / unlit | %s / VolPack Phong |", substr(title[col[c]], 8), substr(title[col[c]], 8)
+    printf "\n|---|"; for (c = 1; c <= nc; c++) if (col[c] ~ /-lit/) printf "---|---|"; printf "\n"
+    for (j = 1; j <= ns; j++) {
+        s = sc[j]; name = s; sub(/-/, " ", name); printf "| %s |", name
+        for (c = 1; c <= nc; c++) {
+            r = col[c]; if (r !~ /-lit/) continue
+            q = ((s, r) in timed) ? r : substr(r, 1, length(r) - 4)
+            u = q; sub(/-lit/, "", u); if (!((s, u) in timed)) u = substr(u, 1, length(u) - 4)
+            printf " %.2f; %.2f |", count_of(s, q) / count_of(s, u), ratio(s, q, u)
+            printf " %.2f; %.2f |", count_of(s, q) / count_of(s, "vp-phong"), ratio(s, q, "vp-phong")
         }
         printf "\n"
     }

@@ -71,6 +71,7 @@ typedef struct tf_point {
 
 typedef struct options {
     const char *volume, *tf_file, *out, *save;
+    const char *volfix_tf; /* --check: write volfix's transfer function of the example's classification here */
     int dims[3], have_dims;
     int check;            /* VolPack's example classification instead of a transfer function */
     shading_t shading;
@@ -104,6 +105,7 @@ static int parse_options(options_t *o, int argc, char **argv);
 static unsigned char *load_volume(const options_t *o, int dims[3]);
 static unsigned char *boxes(int dims[3]);
 static int save_volume(const char *path, const unsigned char *voxels, const int dims[3]);
+static int write_volfix_check(const char *path, const unsigned char *voxels, const int dims[3]);
 static int load_tf(const char *path, tf_point_t *points, int *count);
 static double tf_eval(const tf_point_t *p, int count, double s, int channel);
 static int vp_check(vpResult result, const char *what);
@@ -127,7 +129,8 @@ int main(int argc, char **argv)
     unsigned char *voxels = load_volume(&o, dims);
     if (!voxels)
         return 2;
-    if (o.save && save_volume(o.save, voxels, dims)) {
+    if ((o.save && save_volume(o.save, voxels, dims)) ||
+        (o.volfix_tf && write_volfix_check(o.volfix_tf, voxels, dims))) {
         free(voxels);
         return 2;
     }
@@ -244,6 +247,9 @@ static const char usage[] =
     "  --max-opacity X   VP_MAX_RAY_OPACITY, early ray termination (default 1 - 2^-10, volfix's)\n"
     "  --min-opacity X   VP_MIN_VOXEL_OPACITY (default 0)\n"
     "  --depth-cue       VolPack's example depth cueing (front factor 1.4, density 1.5)\n"
+    "  --volfix-tf FILE  with --check: also write the example's classification for volfix (a .tf file of its\n"
+    "                    density ramp, white, with its material) and print volfix's matching\n"
+    "                    '--gradient-opacity LO,HI' (its ramp in volfix's 8-bit magnitudes of this volume)\n"
     "  -o FILE           render the view at --angle into an 8-bit RGB PNG instead of timing\n"
     "  --json            one JSON object\n";
 
@@ -347,6 +353,8 @@ static int parse_options(options_t *o, int argc, char **argv)
             o->out = v;
         } else if (strcmp(a, "--save") == 0 && v) {
             o->save = v;
+        } else if (strcmp(a, "--volfix-tf") == 0 && v) {
+            o->volfix_tf = v;
         } else if (strcmp(a, "--json") == 0) {
             o->json = 1;
             takes = 0;
@@ -362,6 +370,11 @@ static int parse_options(options_t *o, int argc, char **argv)
     }
     if (!o->check == !o->tf_file) {
         fprintf(stderr, "volpack_peer: give --tf FILE or --check, one of them\n");
+        return 2;
+    }
+    if (o->volfix_tf && !o->check) {
+        fprintf(stderr, "volpack_peer: --volfix-tf %s: goes with --check (it writes the example's classification)\n",
+                o->volfix_tf);
         return 2;
     }
     if (o->check && o->shading != SHADE_PHONG) {
@@ -462,6 +475,58 @@ static unsigned char *boxes(int dims[3])
                 memset(v + ((size_t)z * dims[1] + y) * dims[0] + block[b][0], block[b][6],
                        (size_t)(block[b][1] - block[b][0]));
     return v;
+}
+
+/* VolPack's example classification for volfix (docs/peers.md, "VolPack's check image"): the density ramp as a
+ * transfer function (white, its opacity per unit length as VolPack's voxel opacity is), lit with the example's
+ * material; and its gradient ramp on stdout as volfix's --gradient-opacity LO,HI. volfix's 8-bit magnitude of a
+ * voxel is round(255 m / M), m its central-difference gradient per voxel (one-sided on the volume's faces) and M
+ * the volume's largest (core/normals.c); VolPack's is floor(m) on the inside and 0 on the faces. So VolPack's
+ * ramp from 5 to 20 is volfix's from 255 * 5 / M to 255 * 20 / M, rounded. 0, or 2 with a message. */
+static int write_volfix_check(const char *path, const unsigned char *voxels, const int dims[3])
+{
+    const size_t sx = 1, sy = (size_t)dims[0], sz = (size_t)dims[0] * dims[1];
+    double most2 = 0;
+    for (int z = 0; z < dims[2]; z++)
+        for (int y = 0; y < dims[1]; y++)
+            for (int x = 0; x < dims[0]; x++) {
+                const int at[3] = {x, y, z};
+                const size_t stride[3] = {sx, sy, sz};
+                const size_t i = x * sx + y * sy + z * sz;
+                double m2 = 0;
+                for (int a = 0; a < 3; a++) {
+                    const int down = at[a] > 0, up = at[a] + 1 < dims[a];
+                    const double d = ((double)voxels[i + (up ? stride[a] : 0)] - voxels[i - (down ? stride[a] : 0)]) /
+                                     (down + up);
+                    m2 += d * d;
+                }
+                most2 = m2 > most2 ? m2 : most2;
+            }
+    if (most2 == 0) {
+        fprintf(stderr, "volpack_peer: --volfix-tf: the volume is constant: it has no gradient to ramp\n");
+        return 2;
+    }
+    const double most = sqrt(most2);
+    int lo = (int)lround(255.0 * check_gradient_x[1] / most), hi = (int)lround(255.0 * check_gradient_x[2] / most);
+    hi = hi > 255 ? 255 : hi;
+    lo = lo >= hi ? hi - 1 : lo;
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        fprintf(stderr, "volpack_peer: %s: cannot write: %s\n", path, strerror(errno));
+        return 2;
+    }
+    fprintf(f, "# VolPack's example classification (its examples/volume.h), for volfix: white, opacity per unit\n"
+               "# length 0 at 0 rising to 1 at %d of 255; with volfix-sim --gradient-opacity %d,%d (VolPack's gradient\n"
+               "# ramp %d..%d of the largest gradient, %.3f per voxel)\n",
+            check_density_x[1], lo, hi, check_gradient_x[1], check_gradient_x[2], most);
+    fprintf(f, "shade phong\nmaterial 0.18 0.35 0.39 10\n0 1 1 1 0\n%.10f 1 1 1 1\n1 1 1 1 1\n",
+            check_density_x[1] / 255.0);
+    if (fclose(f) != 0) {
+        fprintf(stderr, "volpack_peer: %s: cannot write: %s\n", path, strerror(errno));
+        return 2;
+    }
+    printf("--gradient-opacity %d,%d\n", lo, hi);
+    return 0;
 }
 
 /* 0, or 2 with a message. */
