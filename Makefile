@@ -154,6 +154,52 @@ endif
 GUD_USB_TEST := tests/port/test_display_gud_usb
 GUD_USB_NEEDS  := $(if $(filter -DVFP_HAVE_GUD,$(PORT_DEFS)),,libusb-1.0-0-dev) $(if $(UMOCKDEV_FLAGS),,libumockdev-dev)
 LEFT_OUT_TESTS := $(if $(strip $(GUD_USB_NEEDS)),$(GUD_USB_TEST):$(subst $() ,+,$(strip $(GUD_USB_NEEDS))))
+# ---- DICOM through GDCM (port/io/dicom.cpp, the one C++ file; port/io/dicom.h says what it reads) ----
+# Debian's libgdcm-dev has no pkg-config file, only CMake's package files, so GDCM is found in this order: GDCM_CFLAGS
+# and GDCM_LIBS given to make (a private build); pkg-config's gdcm-3.0 or gdcm, for systems that ship one; the
+# GDCMConfig.cmake of an installed GDCM (lib/TRIPLET/gdcm-X.Y/ or lib/gdcm-X.Y/ under /usr or /usr/local, in the
+# cross sysroot for cross builds), with its headers in PREFIX/include/gdcm-X.Y and its libraries beside the
+# CMake folder, as GDCMConfig.cmake itself computes them. Each candidate counts only when gdcmImageReader.h and
+# libgdcmMSFF are really there (a static libgdcmMSFF.a for the static cross builds, which Debian does not ship), and
+# a C++ compiler is. GDCM=0 leaves DICOM out.
+CXX := $(CROSS_COMPILE)g++
+ifneq ($(GDCM),0)
+  ifneq ($(GDCM_LIBS),)
+    GDCM_FOUND_BY := GDCM_LIBS
+  else ifeq ($(call have,gdcm-3.0),1)
+    GDCM_CFLAGS := $(shell $(PKG_CONFIG) --cflags gdcm-3.0)
+    GDCM_LIBS   := $(shell $(PKG_CONFIG) --libs gdcm-3.0)
+    GDCM_FOUND_BY := pkg-config
+  else ifeq ($(call have,gdcm),1)
+    GDCM_CFLAGS := $(shell $(PKG_CONFIG) --cflags gdcm)
+    GDCM_LIBS   := $(shell $(PKG_CONFIG) --libs gdcm)
+    GDCM_FOUND_BY := pkg-config
+  else
+    GDCM_TRIPLET := $(if $(CROSS_TRIPLET),$(CROSS_TRIPLET),$(shell $(CC) -print-multiarch 2>/dev/null))
+    GDCM_ROOT    := $(if $(CROSS_COMPILE),$(CROSS_SYSROOT))
+    GDCM_LIBEXT  := $(if $(CROSS_COMPILE),a,so)
+    # each candidate as PREFIX|LIBDIR|VERSION-DIR (gdcm-3.0), the first one complete wins
+    GDCM_CANDIDATES := $(foreach c,$(wildcard $(foreach p,/usr /usr/local,$(GDCM_ROOT)$(p)/lib/$(GDCM_TRIPLET)/gdcm-*/GDCMConfig.cmake \
+                       $(GDCM_ROOT)$(p)/lib/gdcm-*/GDCMConfig.cmake)),$(patsubst %/,%,$(dir $(patsubst %/,%,$(dir $(c)))))|$(notdir $(patsubst %/,%,$(dir $(c)))))
+    gdcm_libdir  = $(firstword $(subst |, ,$(1)))
+    gdcm_incdir  = $(patsubst %/lib,%,$(patsubst %/lib/$(GDCM_TRIPLET),%,$(call gdcm_libdir,$(1))))/include/$(lastword $(subst |, ,$(1)))
+    GDCM_PICK    := $(firstword $(foreach c,$(GDCM_CANDIDATES),$(if $(and $(wildcard $(call gdcm_incdir,$(c))/gdcmImageReader.h),$(wildcard $(call gdcm_libdir,$(c))/libgdcmMSFF.$(GDCM_LIBEXT))),$(c))))
+    ifneq ($(GDCM_PICK),)
+      GDCM_CFLAGS := -I$(call gdcm_incdir,$(GDCM_PICK))
+      GDCM_LIBS   := -L$(call gdcm_libdir,$(GDCM_PICK)) -lgdcmMSFF -lgdcmIOD -lgdcmDICT -lgdcmDSED -lgdcmCommon
+      GDCM_FOUND_BY := $(call gdcm_libdir,$(GDCM_PICK))/$(lastword $(subst |, ,$(GDCM_PICK)))/GDCMConfig.cmake
+    endif
+  endif
+endif
+ifneq ($(and $(GDCM_FOUND_BY),$(shell command -v $(CXX) 2>/dev/null)),)
+  PORT_DEFS += -DVFP_HAVE_GDCM
+  PORT_LIBS += $(GDCM_LIBS) -lstdc++
+  PORT_CXX_OBJ := $(BUILD)/port/io/dicom.o
+  FOUND += gdcm($(GDCM_FOUND_BY))
+else
+  LEFT_OUT += dicom:libgdcm-dev$(if $(shell command -v $(CXX) 2>/dev/null),,+g++)
+endif
+# ---- end of DICOM ----
 # After the backends: HOST_CFLAGS is simply expanded, so PORT_DEFS must be complete when it is appended.
 HOST_CFLAGS += $(EXTRA_CFLAGS) $(PORT_DEFS)
 # ---- end of detection ----------------------------------------------------------------------------------------
@@ -267,8 +313,15 @@ $(BUILD)/host-sim/%.o: host-sim/%.c $(HOST_STAMP)
 $(LIBVOLFIX): $(CORE_OBJ)
 	rm -f $@ && $(AR) rcs $@ $^
 
-$(LIBPORT): $(PORT_OBJ)
+$(LIBPORT): $(PORT_OBJ) $(PORT_CXX_OBJ)
 	rm -f $@ && $(AR) rcs $@ $^
+
+# the DICOM reader, the port layer's one C++ file: the host's flags but C++'s standard, and GDCM's headers; not
+# -Wshadow, which in C++ flags core/volfix.h's function vf_factor for sharing its name with struct vf_factor
+$(BUILD)/port/io/dicom.o: port/io/dicom.cpp $(HOST_STAMP)
+	@mkdir -p $(@D)
+	$(CXX) -std=c++14 $(filter-out -std=% -D_POSIX_C_SOURCE=% -Wshadow,$(HOST_CFLAGS)) $(GDCM_CFLAGS) $(DEPFLAGS) \
+	    -c $< -o $@
 
 $(LIBSIM): $(SIM_OBJ)
 	rm -f $@ && $(AR) rcs $@ $^
@@ -561,7 +614,7 @@ $(PC_FILE): $(HOST_STAMP) $(PREFIX_STAMP) core/volfix.h
 	    'Description: fixed-point, pre-integrated shear-warp volume renderer (core and port layer)' \
 	    'Version: $(VERSION)' 'Cflags: -I$${includedir}/volfix' \
 	    'Libs: -L$${libdir} -lvolfix-port -lvolfix$(if $(SANFLAGS), $(SANFLAGS))' \
-	    'Requires.private: $(PC_REQUIRES)' 'Libs.private: -lpthread -lm' >$@
+	    'Requires.private: $(PC_REQUIRES)' 'Libs.private: $(strip $(GDCM_LIBS) -lpthread -lm$(if $(PORT_CXX_OBJ), -lstdc++))' >$@
 
 install: $(LIBVOLFIX) $(LIBPORT) $(SIM) $(VIEWER) $(PC_FILE)
 	$(INSTALL) -d $(DESTDIR)$(BINDIR) $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(INCLUDEDIR)/volfix \
@@ -583,7 +636,7 @@ clean:
 	rm -rf $(sort $(BUILD) $(BUILD)-* build-* $(FUZZ_BUILD) $(MCU_BUILD) out)
 
 # The compiler's header dependencies of every object and program this Makefile builds.
-DEP_FILES := $(addsuffix .d,$(CORE_OBJ) $(PORT_OBJ) $(SIM_OBJ) $(BUILD)/$(SIM_MAIN:.c=.o) $(VIEWER_OBJ) $(TEST_LIB) \
+DEP_FILES := $(addsuffix .d,$(CORE_OBJ) $(PORT_OBJ) $(PORT_CXX_OBJ) $(SIM_OBJ) $(BUILD)/$(SIM_MAIN:.c=.o) $(VIEWER_OBJ) $(TEST_LIB) \
              $(TEST_BIN) $(BUILD)/$(GUD_USB_TEST) $(FUZZ_MAIN) $(FUZZ_REPLAY) $(HW_BIN) $(FUZZ_OBJ) $(FUZZ_BIN) \
              $(MCU_CORE_OBJ) $(MCU_FW_OBJ) $(MCU_BUILD)/gen_scene)
 -include $(wildcard $(DEP_FILES))

@@ -19,7 +19,8 @@ const char sim_scene_help[] =
     "  --mode MODE          point (order 0), preint1 (order 1, pre-integrated; default), preclass\n"
     "                       (order 0 with voxels classified before interpolation, as VolPack) or preint2\n"
     "                       (order 2: slabs of two slices along the quadratic through three samples)\n"
-    "  --view AZ,EL[,ROLL]  view angles in degrees, each -360..360 (default 30,20)\n"
+    "  --view AZ,EL[,ROLL]  view angles in degrees, each -360..360 (default 30,20), or a named view in the\n"
+    "                       patient frame: anterior, posterior, left, right, superior or inferior\n"
     "  --zoom Z             1 fits the volume's bounding sphere in the image; 1/256..256 (default 1)\n"
     "  --size WxH           output size in pixels, each 1..8192 (default 512x512)\n"
     "  --format F           rgb888 (default), rgb565 or xrgb8888\n"
@@ -49,8 +50,9 @@ const char sim_scene_help[] =
     "  --dims X,Y,Z --type uint8|int8|uint16|int16 [--big-endian] [--spacing X,Y,Z]\n"
     "                       for raw voxel files: sizes 2..4096, spacings above 0 and at most 32767 (--spacing\n"
     "                       also overrides a file's own)\n"
-    "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N with NAME marschner-lobb,\n"
-    "shepp-logan, sphere or cube.\n";
+    "  --series UID         the DICOM series to load from a folder holding several (default: the largest)\n"
+    "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .mhd/.mha, DICOM (a folder of slices or a file), .den or raw file, or\n"
+    "phantom:NAME:N with NAME marschner-lobb, shepp-logan, sphere or cube (formats: docs/formats.md).\n";
 
 static vfp_status_t bad(const char *option, const char *value, const char *expected)
 {
@@ -196,9 +198,11 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
             o->params.rays = (uint32_t)n;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--view") == 0) {
             double d[3] = {0, 0, 0};
-            int n = vfp_parse_list(v, d, 2, 3);
-            if (!n || !(fabs(d[0]) <= 360 && fabs(d[1]) <= 360 && fabs(d[2]) <= 360))
-                return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees, each -360..360");
+            if (!v || vfp_view_named(v, d) != VFP_OK) {
+                int n = vfp_parse_list(v, d, 2, 3);
+                if (!n || !(fabs(d[0]) <= 360 && fabs(d[1]) <= 360 && fabs(d[2]) <= 360))
+                    return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees, each -360..360, or " VFP_VIEW_NAMES);
+            }
             o->azimuth = d[0];
             o->elevation = d[1];
             o->roll = d[2];
@@ -244,6 +248,10 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
                 return VFP_ERR;
             }
             o->load.have_type = 1;
+        } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--series") == 0) {
+            if (!v || !v[0])
+                return bad(a, v, "a DICOM Series Instance UID");
+            o->load.series = v;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--big-endian") == 0) {
             o->load.big_endian = 1;
             takes = 0;

@@ -11,9 +11,14 @@ for_what=${1:-run}
 # the core and volfix-sim; the viewer's backends (displays, knobs) come with their libraries when present
 need="gcc libc6-dev make pkg-config zlib1g-dev libpng-dev gnuplot-nox fonts-dejavu-core"
 need="$need libdrm-dev libusb-1.0-0-dev liblz4-dev libsdl2-dev libgpiod-dev"
+# DICOM: GDCM and a C++ compiler for port/io/dicom.cpp, its one C++ file
+need="$need libgdcm-dev g++"
 case "$for_what" in
   test) need="$need gcc-aarch64-linux-gnu gcc-arm-linux-gnueabihf libc6-dev-arm64-cross libc6-dev-armhf-cross"
         need="$need valgrind umockdev libumockdev-dev xvfb xauth xdotool imagemagick"
+        # tests/port/dicom.sh and orientation.sh: series written by pydicom, compressed by GDCM's gdcmconv;
+        # tests/port/libraries.sh: the NIfTI and NRRD readers against nifticlib and teem
+        need="$need python3-pydicom libgdcm-tools libnifti2-dev libteem-dev"
         need="$need gcc-arm-none-eabi qemu-system-arm" # tests/mcu: the firmware for a Cortex-M4 board under qemu
         need="$need libvolpack1-dev" ;; # tests/peers: VolPack's example image against volfix
   # make test-hw: a Debian kernel in qemu (TCG), an initramfs from busybox, the gpio-sim module built out of tree

@@ -1,4 +1,5 @@
-/* overlay.c: a 5x7 bitmap font drawn into any of the core's pixel formats (see overlay.h). */
+/* overlay.c: a 5x7 bitmap font drawn into any of the core's pixel formats, and the patient directions at the
+ * picture's edges (see overlay.h). */
 #include "overlay.h"
 
 #include <stdint.h>
@@ -103,4 +104,24 @@ void vfp_overlay_text(const vf_image_t *img, int rotation, int x, int y, int sca
                 for (int sx = 0; sx < scale; sx++)
                     plot(img, rotation, x + col * scale + sx, y + row * scale + sy, grey);
         }
+}
+
+void vfp_overlay_directions(const vf_image_t *img, int rotation, int scale, const char *right, const char *left,
+                            const char *top, const char *bottom)
+{
+    if (!img || !img->pixels || scale < 1)
+        return;
+    int w = rotation % 180 ? (int)img->height : (int)img->width;
+    int h = rotation % 180 ? (int)img->width : (int)img->height;
+    int th = vfp_overlay_height(scale), pad = scale;
+    /* Each at the middle of its edge, as radiology viewers place them; the frame-time lines start at the top left,
+     * clear of the top edge's middle. */
+    if (top && top[0])
+        vfp_overlay_text(img, rotation, (w - vfp_overlay_width(top, scale)) / 2, pad, scale, top);
+    if (bottom && bottom[0])
+        vfp_overlay_text(img, rotation, (w - vfp_overlay_width(bottom, scale)) / 2, h - th - pad, scale, bottom);
+    if (left && left[0])
+        vfp_overlay_text(img, rotation, pad, (h - th) / 2, scale, left);
+    if (right && right[0])
+        vfp_overlay_text(img, rotation, w - vfp_overlay_width(right, scale) - pad, (h - th) / 2, scale, right);
 }

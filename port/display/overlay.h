@@ -17,4 +17,9 @@ void vfp_overlay_text(const vf_image_t *image, int rotation, int x, int y, int s
 int vfp_overlay_width(const char *text, int scale);
 int vfp_overlay_height(int scale);
 
+/* The patient directions of the upright picture's edges (vfp_view_edges' letters, "L", "LA"), each at the middle
+ * of its edge; an empty or NULL text draws nothing there. */
+void vfp_overlay_directions(const vf_image_t *image, int rotation, int scale, const char *right, const char *left,
+                            const char *top, const char *bottom);
+
 #endif

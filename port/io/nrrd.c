@@ -1,4 +1,5 @@
-/* nrrd.c: the NRRD reader (NRRD0001..0005; attached or detached data; raw or gzip; 8- and 16-bit scalars in 3D). */
+/* nrrd.c: the NRRD reader (NRRD0001..0005; attached or detached data; raw, gzip, ascii or hex; 8- and 16-bit scalars
+ * in 3D; the patient orientation from space and space directions). */
 
 /*********************
  *      INCLUDES
@@ -36,9 +37,13 @@ typedef enum field_id {
     F_LINE_SKIP,
     F_BYTE_SKIP,
     F_DATA_FILE,
+    F_SPACE,
     F_USED,
     F_IGNORED = F_USED
 } field_id_t;
+
+/* How the voxel data is written. */
+typedef enum encoding { ENC_RAW, ENC_GZIP, ENC_ASCII, ENC_HEX } encoding_t;
 
 /* What read_line found. */
 typedef enum line_result {
@@ -56,7 +61,11 @@ typedef struct header {
     uint32_t sizes[3];
     double spacings[3];
     double directions[3];    /* lengths of the space direction vectors */
-    int gzip, big_endian;
+    double vectors[3][4];    /* the space direction vectors, in the space's coordinates */
+    int vector_len[3];       /* components of each vector; 0 for "none" */
+    int space;               /* a patient space (SPACE_*), or SPACE_NONE */
+    encoding_t encoding;
+    int big_endian;
     uint32_t line_skip;
     int64_t byte_skip;
     char *data_file;         /* as written in the header */
@@ -79,6 +88,10 @@ static vfp_status_t parse_directions(header_t *h, const char *value, char *err, 
 static int parse_int(const char *value, long long min, long long max, long long *out);
 static vfp_status_t check_header(header_t *h, vfp_volume_t *vol, char *err, size_t errlen);
 static vfp_status_t read_voxels(header_t *h, vfp_volume_t *vol, char *err, size_t errlen);
+static vfp_status_t read_text_voxels(header_t *h, const vfpi_source_t *src, vfp_volume_t *vol, char *err,
+                                     size_t errlen);
+static vfp_status_t parse_space(header_t *h, const char *value, char *err, size_t errlen);
+static vfp_status_t orientation(header_t *h, vfp_volume_t *vol, char *err, size_t errlen);
 static field_id_t field_lookup(const char *name, int *known);
 static char *trim(char *s);
 
@@ -94,14 +107,14 @@ static const struct {
     {"type", F_TYPE}, {"dimension", F_DIMENSION}, {"sizes", F_SIZES}, {"spacings", F_SPACINGS},
     {"space directions", F_DIRECTIONS}, {"spacedirections", F_DIRECTIONS}, {"endian", F_ENDIAN},
     {"encoding", F_ENCODING}, {"line skip", F_LINE_SKIP}, {"lineskip", F_LINE_SKIP}, {"byte skip", F_BYTE_SKIP},
-    {"byteskip", F_BYTE_SKIP}, {"data file", F_DATA_FILE}, {"datafile", F_DATA_FILE},
+    {"byteskip", F_BYTE_SKIP}, {"data file", F_DATA_FILE}, {"datafile", F_DATA_FILE}, {"space", F_SPACE},
     /* fields this renderer does not need, read and ignored */
     {"content", F_IGNORED}, {"number", F_IGNORED}, {"block size", F_IGNORED}, {"blocksize", F_IGNORED},
     {"thicknesses", F_IGNORED}, {"axis mins", F_IGNORED}, {"axismins", F_IGNORED}, {"axis maxs", F_IGNORED},
     {"axismaxs", F_IGNORED}, {"centers", F_IGNORED}, {"centerings", F_IGNORED}, {"kinds", F_IGNORED},
     {"labels", F_IGNORED}, {"units", F_IGNORED}, {"min", F_IGNORED}, {"max", F_IGNORED}, {"old min", F_IGNORED},
     {"oldmin", F_IGNORED}, {"old max", F_IGNORED}, {"oldmax", F_IGNORED}, {"sample units", F_IGNORED},
-    {"sampleunits", F_IGNORED}, {"space", F_IGNORED}, {"space dimension", F_IGNORED}, {"spacedimension", F_IGNORED},
+    {"sampleunits", F_IGNORED}, {"space dimension", F_IGNORED}, {"spacedimension", F_IGNORED},
     {"space units", F_IGNORED}, {"spaceunits", F_IGNORED}, {"space origin", F_IGNORED}, {"spaceorigin", F_IGNORED},
     {"measurement frame", F_IGNORED}, {"measurementframe", F_IGNORED},
 };
@@ -124,6 +137,24 @@ static const struct {
     {"ulonglong", -1}, {"unsigned long long", -1}, {"unsigned long long int", -1}, {"uint64", -1},
     {"uint64_t", -1}, {"float", -1}, {"double", -1}, {"block", -1},
 };
+
+/* The patient spaces NRRD names, and how each maps to LPS: the sign of each coordinate. The scanner and
+ * handedness-only spaces ("scanner-xyz", "3D-right-handed") say nothing about the patient. */
+enum { SPACE_NONE = -1 };
+static const struct {
+    const char *name;
+    int dim;        /* components of a space direction */
+    int sign[3];    /* LPS = sign * the space's coordinates */
+} spaces[] = {
+    {"left-posterior-superior", 3, {1, 1, 1}},   {"LPS", 3, {1, 1, 1}},
+    {"right-anterior-superior", 3, {-1, -1, 1}}, {"RAS", 3, {-1, -1, 1}},
+    {"left-anterior-superior", 3, {1, -1, 1}},   {"LAS", 3, {1, -1, 1}},
+    {"left-posterior-superior-time", 4, {1, 1, 1}},   {"LPST", 4, {1, 1, 1}},
+    {"right-anterior-superior-time", 4, {-1, -1, 1}}, {"RAST", 4, {-1, -1, 1}},
+    {"left-anterior-superior-time", 4, {1, -1, 1}},   {"LAST", 4, {1, -1, 1}},
+};
+static const char *const other_spaces[] = {"scanner-xyz", "scanner-xyz-time", "3D-right-handed", "3D-left-handed",
+                                           "3D-right-handed-time", "3D-left-handed-time"};
 
 /**********************
  *   GLOBAL FUNCTIONS
@@ -148,6 +179,8 @@ vfp_status_t vfpi_load_nrrd(vfp_volume_t *vol, const char *path, char *err, size
     free(line);
     if (rc == VFP_OK)
         rc = check_header(&h, vol, err, errlen);
+    if (rc == VFP_OK)
+        rc = orientation(&h, vol, err, errlen);
     if (rc == VFP_OK)
         rc = read_voxels(&h, vol, err, errlen);
     free(h.data_file);
@@ -266,20 +299,27 @@ static vfp_status_t parse_field(header_t *h, field_id_t id, const char *name, ch
                          value);
     case F_ENCODING:
         if (strcasecmp(value, "raw") == 0)
-            return VFP_OK;
-        if (strcasecmp(value, "gzip") == 0 || strcasecmp(value, "gz") == 0) {
-            h->gzip = 1;
-            return VFP_OK;
-        }
-        {
-            static const char *const known[] = {"txt", "text", "ascii", "hex", "bz2", "bzip2", "zrl"};
-            for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
-                if (strcasecmp(value, known[i]) == 0)
-                    return vfpi_fail(err, errlen, h->path, h->line, "unsupported encoding '%s' (supported: raw, "
-                                     "gzip)", value);
-        }
-        return vfpi_fail(err, errlen, h->path, h->line, "unknown encoding '%.*s' (supported: raw, gzip)", SHOWN,
-                         value);
+            h->encoding = ENC_RAW;
+        else if (strcasecmp(value, "gzip") == 0 || strcasecmp(value, "gz") == 0)
+            h->encoding = ENC_GZIP;
+        else if (strcasecmp(value, "ascii") == 0 || strcasecmp(value, "text") == 0 || strcasecmp(value, "txt") == 0)
+            h->encoding = ENC_ASCII;
+        else if (strcasecmp(value, "hex") == 0)
+            h->encoding = ENC_HEX;
+        else if (strcasecmp(value, "bzip2") == 0 || strcasecmp(value, "bz2") == 0)
+            /* bzip2 would be a library for one rare encoding; the data converts losslessly in one command. */
+            return vfpi_fail(err, errlen, h->path, h->line, "unsupported encoding '%s' (supported: raw, gzip, ascii, "
+                             "hex; convert with 'unu save -e gzip', or bunzip2 the data file and say 'encoding: raw')",
+                             value);
+        else if (strcasecmp(value, "zrl") == 0)
+            return vfpi_fail(err, errlen, h->path, h->line, "unsupported encoding '%s' (supported: raw, gzip, ascii, "
+                             "hex)", value);
+        else
+            return vfpi_fail(err, errlen, h->path, h->line, "unknown encoding '%.*s' (supported: raw, gzip, ascii, "
+                             "hex)", SHOWN, value);
+        return VFP_OK;
+    case F_SPACE:
+        return parse_space(h, value, err, errlen);
     case F_LINE_SKIP:
         if (!parse_int(value, 0, UINT32_MAX, &v))
             return vfpi_fail(err, errlen, h->path, h->line, "bad line skip '%.*s' (expected a whole number >= 0)",
@@ -400,6 +440,7 @@ static vfp_status_t parse_directions(header_t *h, const char *value, char *err, 
     const char *p = value;
     while (*p) {
         double length = 1.0;
+        int comps = 0;
         if (strncmp(p, "none", 4) == 0 && (p[4] == 0 || isspace((unsigned char)p[4]))) {
             p += 4;
         } else if (*p == '(') {
@@ -411,6 +452,9 @@ static vfp_status_t parse_directions(header_t *h, const char *value, char *err, 
                 if (end == p)
                     goto bad;
                 sum += v * v;
+                if (n < 3 && comps < 4)
+                    h->vectors[n][comps] = v;
+                comps++;
                 for (p = end; isspace((unsigned char)*p); p++)
                     ;
                 if (*p == ',') {
@@ -426,8 +470,10 @@ static vfp_status_t parse_directions(header_t *h, const char *value, char *err, 
         } else {
             goto bad;
         }
-        if (n < 3)
+        if (n < 3) {
             h->directions[n] = length;
+            h->vector_len[n] = comps;
+        }
         n++;
         if (*p && !isspace((unsigned char)*p))
             goto bad;
@@ -462,11 +508,14 @@ static vfp_status_t check_header(header_t *h, vfp_volume_t *vol, char *err, size
     for (size_t i = 0; i < sizeof required / sizeof required[0]; i++)
         if (!h->seen[required[i].id])
             return vfpi_fail(err, errlen, h->path, 0, "missing required field '%s'", required[i].name);
-    if (vfpi_type_bytes(h->type) > 1 && !h->seen[F_ENDIAN])
+    if (vfpi_type_bytes(h->type) > 1 && !h->seen[F_ENDIAN] && h->encoding != ENC_ASCII)
         return vfpi_fail(err, errlen, h->path, 0, "missing field 'endian' (16-bit data needs 'endian: little' or "
                          "'endian: big')");
-    if (h->byte_skip < 0 && h->gzip)
+    if (h->byte_skip < 0 && h->encoding != ENC_RAW)
         return vfpi_fail(err, errlen, h->path, h->seen[F_BYTE_SKIP], "byte skip -1 works only with raw encoding");
+    if (h->byte_skip > 0 && (h->encoding == ENC_ASCII || h->encoding == ENC_HEX))
+        return vfpi_fail(err, errlen, h->path, h->seen[F_BYTE_SKIP], "byte skip works only with raw and gzip "
+                         "encodings (text data skips lines: 'line skip')");
     if (!h->data_file && !h->attached)
         return vfpi_fail(err, errlen, h->path, 0, "no data: the header has no 'data file' field and no blank line "
                          "followed by data");
@@ -492,7 +541,7 @@ static vfp_status_t check_header(header_t *h, vfp_volume_t *vol, char *err, size
 static vfp_status_t read_voxels(header_t *h, vfp_volume_t *vol, char *err, size_t errlen)
 {
     vfpi_source_t src = {.path = h->path, .offset = h->data_offset, .line_skip = h->line_skip,
-                         .byte_skip = h->byte_skip, .gzip = h->gzip};
+                         .byte_skip = h->byte_skip, .gzip = h->encoding == ENC_GZIP};
     char *data_path = NULL;
     char owner[VFP_ERR_LEN], note[VFP_ERR_LEN + 32];
     if (h->data_file) {
@@ -511,14 +560,166 @@ static vfp_status_t read_voxels(header_t *h, vfp_volume_t *vol, char *err, size_
         src.note = note;
         src.offset = 0;
     }
-    size_t bytes;
-    vfp_status_t rc = vfpi_read_voxels(vol, h->sizes, h->type, &src, &bytes, err, errlen);
+    size_t bytes = 0;
+    vfp_status_t rc;
+    if (h->encoding == ENC_ASCII || h->encoding == ENC_HEX)
+        rc = read_text_voxels(h, &src, vol, err, errlen);
+    else
+        rc = vfpi_read_voxels(vol, h->sizes, h->type, &src, &bytes, err, errlen);
     free(data_path);
     if (rc)
         return rc;
-    if (vfpi_type_bytes(h->type) == 2)
-        vfpi_to_native16(vol->data, bytes / 2, h->big_endian);
+    if (h->encoding != ENC_ASCII && vfpi_type_bytes(h->type) == 2) /* ascii values are numbers, not bytes */
+        vfpi_to_native16(vol->data, (size_t)h->sizes[0] * h->sizes[1] * h->sizes[2], h->big_endian);
     return VFP_OK;
+}
+
+/* ascii: one number per voxel, separated by white space or commas, in the type's range. hex: two hexadecimal
+ * digits per byte, white space anywhere, the bytes in the header's byte order. The text is read front to back and
+ * the voxels buffer grows with it (doubling), so a header that claims a huge volume costs what the file holds. */
+static vfp_status_t read_text_voxels(header_t *h, const vfpi_source_t *src, vfp_volume_t *vol, char *err,
+                                     size_t errlen)
+{
+    static const long lo[] = {[VF_VOXEL_U8] = 0, [VF_VOXEL_I8] = -128, [VF_VOXEL_U16] = 0, [VF_VOXEL_I16] = -32768};
+    static const long hi[] = {[VF_VOXEL_U8] = 255, [VF_VOXEL_I8] = 127, [VF_VOXEL_U16] = 65535, [VF_VOXEL_I16] = 32767};
+    const char *what = h->encoding == ENC_ASCII ? "ascii" : "hex";
+    unsigned tb = vfpi_type_bytes(h->type);
+    size_t count = (size_t)h->sizes[0] * h->sizes[1] * h->sizes[2], bytes = count * tb;
+    FILE *file = fopen(src->path, "rb");
+    if (!file) {
+        if (src->owner)
+            return vfpi_fail(err, errlen, src->owner, 0, "cannot open data file %s: %s", src->path, strerror(errno));
+        return vfpi_fail(err, errlen, src->path, 0, "cannot open: %s", strerror(errno));
+    }
+    vfp_status_t rc = VFP_OK;
+    unsigned char *dst = NULL;
+    size_t cap = 0, got = 0; /* bytes */
+    if (src->offset && fseeko(file, (off_t)src->offset, SEEK_SET) != 0)
+        rc = vfpi_fail(err, errlen, src->path, 0, "cannot seek to byte %llu", (unsigned long long)src->offset);
+    for (uint32_t line = 0; rc == VFP_OK && line < h->line_skip; line++) {
+        int c;
+        while ((c = getc(file)) != EOF && c != '\n')
+            ;
+        if (c == EOF)
+            rc = vfpi_fail(err, errlen, src->path, 0, "truncated: line skip %u passes the end of the file after %u "
+                           "lines", h->line_skip, line);
+    }
+    int c = 0;
+    while (rc == VFP_OK) {
+        do
+            c = getc(file);
+        while (c != EOF && (isspace(c) || (h->encoding == ENC_ASCII && c == ',')));
+        if (c == EOF)
+            break;
+        unsigned char value[2];
+        size_t n;
+        if (h->encoding == ENC_ASCII) {
+            char num[32];
+            size_t k = 0;
+            while (c != EOF && !isspace(c) && c != ',' && k + 1 < sizeof num) {
+                num[k++] = (char)c;
+                c = getc(file);
+            }
+            num[k] = 0;
+            char *end;
+            errno = 0;
+            long v = strtol(num, &end, 10);
+            if (end == num || *end || errno == ERANGE || v < lo[h->type] || v > hi[h->type]) {
+                rc = vfpi_fail(err, errlen, src->path, 0, "ascii value %zu '%.24s' is not a whole number in %ld..%ld "
+                               "(%s data)%s%s", got / tb + 1, num, lo[h->type], hi[h->type], tb == 1 ? "8-bit" :
+                               "16-bit", src->note ? "; " : "", src->note ? src->note : "");
+                break;
+            }
+            uint16_t u = (uint16_t)v;
+            if (tb == 1)
+                value[0] = (unsigned char)u;
+            else
+                memcpy(value, &u, 2);
+            n = tb;
+        } else {
+            int c2;
+            do
+                c2 = getc(file);
+            while (c2 != EOF && isspace(c2));
+            if (!isxdigit(c) || !isxdigit(c2)) {
+                rc = vfpi_fail(err, errlen, src->path, 0, "hex byte %zu is not two hexadecimal digits%s%s", got + 1,
+                               src->note ? "; " : "", src->note ? src->note : "");
+                break;
+            }
+            char pair[3] = {(char)c, (char)c2, 0};
+            value[0] = (unsigned char)strtoul(pair, NULL, 16);
+            n = 1;
+        }
+        if (got + n > bytes) {
+            rc = vfpi_fail(err, errlen, src->path, 0, "%s data holds more than the %zu values the sizes and type say",
+                           what, count);
+            break;
+        }
+        if (got + n > cap) {
+            size_t grown_cap = cap ? (cap > bytes / 2 ? bytes : cap * 2) : (bytes < 4096 ? bytes : 4096);
+            unsigned char *grown = realloc(dst, grown_cap);
+            if (!grown) {
+                rc = vfpi_fail(err, errlen, src->path, 0, "out of memory for %zu bytes of voxels", grown_cap);
+                break;
+            }
+            dst = grown;
+            cap = grown_cap;
+        }
+        memcpy(dst + got, value, n);
+        got += n;
+    }
+    if (rc == VFP_OK && ferror(file))
+        rc = vfpi_fail(err, errlen, src->path, 0, "read error: %s", strerror(errno));
+    if (rc == VFP_OK && got < bytes)
+        rc = vfpi_fail(err, errlen, src->path, 0, "truncated: expected %zu %s, found %zu", h->encoding == ENC_ASCII ?
+                       count : bytes, h->encoding == ENC_ASCII ? "ascii values" : "hex bytes",
+                       h->encoding == ENC_ASCII ? got / tb : got);
+    fclose(file);
+    if (rc) {
+        free(dst);
+        return rc;
+    }
+    vol->data = dst;
+    for (int a = 0; a < 3; a++)
+        vol->core.dims[a] = h->sizes[a];
+    vol->core.type = h->type;
+    return VFP_OK;
+}
+
+static vfp_status_t parse_space(header_t *h, const char *value, char *err, size_t errlen)
+{
+    h->space = SPACE_NONE;
+    for (size_t i = 0; i < sizeof spaces / sizeof spaces[0]; i++)
+        if (strcasecmp(value, spaces[i].name) == 0) {
+            h->space = (int)i;
+            return VFP_OK;
+        }
+    for (size_t i = 0; i < sizeof other_spaces / sizeof other_spaces[0]; i++)
+        if (strcasecmp(value, other_spaces[i]) == 0)
+            return VFP_OK;
+    return vfpi_fail(err, errlen, h->path, h->line, "unknown space '%.*s' (expected a NRRD space such as "
+                     "left-posterior-superior, right-anterior-superior or scanner-xyz)", SHOWN, value);
+}
+
+/* A patient space and a direction for every axis: the axes' LPS vectors. Anything less (no space, a scanner
+ * space, an axis without a direction) leaves the volume as stored. */
+static vfp_status_t orientation(header_t *h, vfp_volume_t *vol, char *err, size_t errlen)
+{
+    if (!h->seen[F_SPACE] || h->space == SPACE_NONE || !h->seen[F_DIRECTIONS])
+        return VFP_OK;
+    double axes[3][3];
+    int dim = spaces[h->space].dim;
+    for (int a = 0; a < 3; a++) {
+        if (h->vector_len[a] == 0)
+            return VFP_OK;
+        if (h->vector_len[a] != dim)
+            return vfpi_fail(err, errlen, h->path, h->seen[F_DIRECTIONS], "space directions: vector %d has %d "
+                             "components (expected %d for space '%s')", a + 1, h->vector_len[a], dim,
+                             spaces[h->space].name);
+        for (int c = 0; c < 3; c++)
+            axes[a][c] = spaces[h->space].sign[c] * h->vectors[a][c];
+    }
+    return vfpi_set_direction(vol, axes, "space directions", h->path, h->seen[F_DIRECTIONS], err, errlen);
 }
 
 static field_id_t field_lookup(const char *name, int *known)

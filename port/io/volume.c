@@ -4,6 +4,7 @@
  *      INCLUDES
  *********************/
 #include "volume_internal.h"
+#include "dicom.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -58,6 +59,8 @@ vfp_status_t vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load
     if (rc == VFP_OK)
         rc = load(vol, spec, opts, err, errlen);
     vfpi_spool_end();
+    if (rc == VFP_OK)
+        rc = vfpi_orient(vol, err, errlen);
     if (rc == VFP_OK && opts && opts->downsample > 1)
         rc = vfpi_downsample(vol, opts->downsample, err, errlen);
     if (rc == VFP_OK)
@@ -211,14 +214,30 @@ static vfp_status_t load(vfp_volume_t *vol, const char *spec, const vfp_load_opt
     struct stat st;
     if (vfpi_stat(spec, &st) != 0)
         return vfpi_fail(err, errlen, spec, 0, "cannot open: %s", strerror(errno));
-    if (S_ISDIR(st.st_mode))
-        return vfpi_fail(err, errlen, spec, 0, "is a directory (expected a volume file)");
+    if (S_ISDIR(st.st_mode)) {
+#ifdef VFP_HAVE_GDCM
+        snprintf(vol->format, sizeof vol->format, "dicom");
+        return vfpi_load_dicom(vol, spec, opts, err, errlen);
+#else
+        return vfpi_fail(err, errlen, spec, 0, "is a directory (expected a volume file; a folder of DICOM slices needs "
+                         "volfix built with GDCM: apt-get install libgdcm-dev, then make)");
+#endif
+    }
     unsigned char head[VFPI_HEAD_BYTES];
     size_t n;
     if (vfpi_read_head(spec, 0, head, sizeof head, &n, err, errlen))
         return VFP_ERR;
     if (n == 0)
-        return vfpi_fail(err, errlen, spec, 0, "empty file (expected a volume: NRRD, NIfTI-1, VolPack .den or raw)");
+        return vfpi_fail(err, errlen, spec, 0, "empty file (expected a volume: NRRD, NIfTI, MetaImage, DICOM, "
+                         "VolPack .den or raw)");
+    if (vfpi_is_dicom(head, n) || vfpi_has_suffix(spec, ".dcm")) {
+        snprintf(vol->format, sizeof vol->format, "dicom");
+        return vfpi_load_dicom(vol, spec, opts, err, errlen);
+    }
+    if (vfpi_has_suffix(spec, ".mhd") || vfpi_has_suffix(spec, ".mha") || vfpi_is_metaimage(head, n)) {
+        snprintf(vol->format, sizeof vol->format, "metaimage");
+        return vfpi_load_metaimage(vol, spec, err, errlen);
+    }
 
     if ((n >= 4 && memcmp(head, "NRRD", 4) == 0) || vfpi_has_suffix(spec, ".nrrd") || vfpi_has_suffix(spec, ".nhdr")) {
         snprintf(vol->format, sizeof vol->format, "nrrd");

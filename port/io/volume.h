@@ -1,6 +1,12 @@
 /*
- * volume.h: reading volumes into memory for the core (NRRD, NIfTI-1, VolPack .den, raw, synthetic phantoms),
- * and choosing the window that maps 16-bit data to the core's 8-bit scalar domain.
+ * volume.h: reading volumes into memory for the core (NRRD, NIfTI-1 and -2, MetaImage, DICOM when built with GDCM,
+ * VolPack .den, raw, synthetic phantoms), turning them into the patient frame, and choosing the window that maps
+ * 16-bit data to the core's 8-bit scalar domain.
+ *
+ * The patient frame is DICOM's LPS: +x towards the patient's left, +y posterior, +z superior. A file that says how
+ * its voxel axes lie in the patient (DICOM Image Orientation, NIfTI qform/sform, NRRD space directions, MetaImage
+ * TransformMatrix or AnatomicalOrientation) is loaded with its axes reordered and reversed so that the volume's x,
+ * y, z are L, P, S (docs/formats.md); the views then mean the same from every format (vfp_view_named).
  *
  * Every failure fills `err` with one line that names the file (and the header line when there is one) and says
  * what was wrong and what was expected, for example
@@ -26,7 +32,18 @@ typedef struct vfp_volume {
     double slope, inter;  /* data value = slope * raw + inter (NIfTI scl_slope/scl_inter; else 1 and 0) */
     int32_t raw_min, raw_max;
     char name[256];       /* the file name or phantom spec, for messages */
-    char format[16];      /* "nrrd", "nifti", "den", "raw", "phantom" */
+    char format[16];      /* "nrrd", "nifti", "metaimage", "dicom", "den", "raw", "phantom" */
+    /* Orientation. oriented: the file said where its axes point in the patient; then the voxels have been reordered
+     * so that x, y, z run towards L, P, S, and direction holds what is left: column a is the LPS unit vector of
+     * axis a (the identity for axis-aligned data; oblique data is shown in the nearest patient axes, oblique_deg
+     * says how far off). Not oriented (raw, .den, phantoms, files without a patient space): the axes as stored and
+     * direction the identity. orient_from names the header field it came from ("qform", "space directions"). */
+    int oriented;
+    double direction[3][3];
+    double oblique_deg;
+    char orient_from[32];
+    int stored_axis[3];   /* the file's axis that became x, y, z (0..2), and whether it was reversed */
+    int stored_flip[3];
 } vfp_volume_t;
 
 /* Options for files that do not describe themselves (raw). */
@@ -39,10 +56,12 @@ typedef struct vfp_load_opts {
     int have_spacing;     /* --spacing X,Y,Z given (also overrides a file's own spacing) */
     double spacing[3];
     int downsample;       /* --downsample N: average N^3 blocks, spacing times N (0 or 1: as stored) */
+    const char *series;   /* --series UID: the DICOM series to load from a folder holding several (NULL: largest) */
+    int quiet;            /* no progress or series list on stderr (tests, fuzzing) */
 } vfp_load_opts_t;
 
-/* Load by name: a file path (format from its contents and extension: .nhdr/.nrrd, .nii/.nii.gz, .den, else raw,
- * which needs dims and type), or a synthetic volume "phantom:NAME:N" with NAME marschner-lobb, shepp-logan or
+/* Load by name: a file path (format from its contents and extension: .nhdr/.nrrd, .nii/.nii.gz, .mhd/.mha, DICOM,
+ * .den, else raw, which needs dims and type), a folder of DICOM files, or a synthetic volume "phantom:NAME:N" with NAME marschner-lobb, shepp-logan or
  * sphere or cube and N the size of each side (2..1024). Returns VFP_OK, or VFP_ERR with `err` filled. */
 vfp_status_t vfp_volume_load(vfp_volume_t *vol, const char *spec, const vfp_load_opts_t *opts, char *err,
                              size_t errlen);
@@ -66,5 +85,18 @@ vfp_status_t vfp_parse_window(const vfp_volume_t *vol, const char *text, vf_wind
 /* Parse "X,Y,Z" (positive integers) and "uint8|int8|uint16|int16". Return VFP_OK, or VFP_ERR with err. */
 vfp_status_t vfp_parse_dims(const char *text, uint32_t dims[3], char *err, size_t errlen);
 vfp_status_t vfp_parse_type(const char *text, vf_voxel_t *type, char *err, size_t errlen);
+
+/* Named views in the patient frame: anterior, posterior, left, right, superior, inferior. Each is the camera's
+ * place (anterior: in front of the patient, looking at the face) with the head up (anterior, posterior, left,
+ * right) or the face up (superior, inferior), and never mirrored: the patient's left is on the right of the
+ * picture when the camera faces the patient, as a radiologist reads a frontal view. Sets view[] to the azimuth,
+ * elevation and roll in degrees that --view AZ,EL,ROLL takes. Returns VFP_OK, or VFP_ERR for another name. */
+vfp_status_t vfp_view_named(const char *name, double view[3]);
+#define VFP_VIEW_NAMES "anterior, posterior, left, right, superior or inferior"
+
+/* The patient directions of the picture's edges for a view (degrees, as --view): letters from L, R, A, P, S, I,
+ * the largest component first, each component of at least a quarter (so 30,20 gives "LA" rather than "L"). Each
+ * string holds up to three letters and a NUL. */
+void vfp_view_edges(const double view[3], char right[4], char left[4], char top[4], char bottom[4]);
 
 #endif /* VFP_VOLUME_H */

@@ -15,8 +15,9 @@
 
 #include "volume.h"
 
-/* Bytes the dispatcher looks at to recognise a file: a NIfTI-1 header (348) and its extension flag (4). */
-#define VFPI_HEAD_BYTES 352
+/* Bytes the dispatcher looks at to recognise a file: a NIfTI-2 header (540; NIfTI-1's is 348) and its extension
+ * flag (4). DICOM's "DICM" is at 128. */
+#define VFPI_HEAD_BYTES 544
 
 /* Largest spacing we accept: spacing_q16 must fit the core's uint32_t with room for sums of a few. */
 #define VFPI_MAX_SPACING 32767.0
@@ -89,6 +90,16 @@ vfp_status_t vfpi_load_nifti(vfp_volume_t *vol, const char *path, int gzip, char
 vfp_status_t vfpi_load_den(vfp_volume_t *vol, const char *path, char *err, size_t errlen);
 vfp_status_t vfpi_load_raw(vfp_volume_t *vol, const char *path, const vfp_load_opts_t *opts, char *err, size_t errlen);
 vfp_status_t vfpi_load_phantom(vfp_volume_t *vol, const char *spec, char *err, size_t errlen);
+vfp_status_t vfpi_load_metaimage(vfp_volume_t *vol, const char *path, char *err, size_t errlen);
+
+/* Orientation (orientation.c). A reader that knows where its voxel axes point in the patient calls
+ * vfpi_set_direction with axes[a] the LPS vector of stored axis a (any length; readers convert RAS and other
+ * patient spaces to LPS): it checks that the three make a frame (finite, non-zero, not in one plane; else an error
+ * "NAME:LINE: FROM: ...") and sets vol->oriented, direction and orient_from. volume.c then calls vfpi_orient,
+ * which reorders and reverses the voxels (and dims and spacing) so that x, y, z run towards L, P, S. */
+vfp_status_t vfpi_set_direction(vfp_volume_t *vol, const double axes[3][3], const char *from, const char *name,
+                                unsigned line, char *err, size_t errlen);
+vfp_status_t vfpi_orient(vfp_volume_t *vol, char *err, size_t errlen);
 
 /* Replace the volume by its box average over factor^3 blocks (1..VFPI_MAX_DOWNSAMPLE), spacing times factor
  * (volume_downsample.c). Before volume.c's finishing step, which derives spacing_q16 and the range. */
@@ -98,5 +109,6 @@ vfp_status_t vfpi_downsample(vfp_volume_t *vol, int factor, char *err, size_t er
 /* Recognisers for dispatch by content (head: the first bytes of the file, decompressed when gzip). */
 int vfpi_is_nifti(const unsigned char *head, size_t n);
 int vfpi_is_den(const unsigned char *head, size_t n, uint64_t file_bytes);
+int vfpi_is_metaimage(const unsigned char *head, size_t n);
 
 #endif /* VFP_VOLUME_INTERNAL_H */

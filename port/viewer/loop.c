@@ -215,6 +215,12 @@ static vfp_status_t present(loop_t *L, int full, double ms)
             }
         if (line3[0])
             vfp_overlay_text(&L->frame, rot, 2 * scale, 2 * scale + 2 * vfp_overlay_height(scale), scale, line3);
+        if (v->scene.full.oriented) { /* the patient's directions, when the file gave them */
+            const double view[3] = {v->controls.azimuth, v->controls.elevation, v->controls.roll};
+            char right[4], left[4], top[4], bottom[4];
+            vfp_view_edges(view, right, left, top, bottom);
+            vfp_overlay_directions(&L->frame, rot, scale, right, left, top, bottom);
+        }
     }
     char err[VIEWER_ERR_LEN] = "";
     uint64_t t0 = now_ns();

@@ -33,8 +33,9 @@ static const char usage[] =
     "  --window LO,HI       data values the transfer function's 0..1 spans, two different finite numbers\n"
     "                       (default: from the data, docs/defaults.md)\n"
     "  --mode MODE          point, preint1 (default), preclass or preint2; the mode button cycles them\n"
-    "  --view AZ,EL[,ROLL]  first view in degrees, each -360..360 (default 30,20); the reset button comes back\n"
-    "                       to it\n"
+    "  --view AZ,EL[,ROLL]  first view in degrees, each -360..360 (default 30,20), or anterior, posterior,\n"
+    "                       left, right, superior or inferior (the patient frame); the reset button comes\n"
+    "                       back to it\n"
     "  --zoom Z             first zoom, 1 fitting the volume; 0.25..8 (default 1)\n"
     "  --script FILE        knob turns and presses from a file instead of the board's inputs\n"
     "                       (lines 'MS turn KNOB STEPS', 'MS press BUTTON', 'MS release BUTTON', 'MS quit')\n"
@@ -55,7 +56,9 @@ static const char usage[] =
     "Lighting (docs/algorithm.md section 7), for every transfer function the preset button cycles to; each\n"
     "otherwise lit as it says itself:\n"
     VFP_LIGHTING_HELP
-    "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .den or raw file, or phantom:NAME:N. Ctrl-C quits.\n";
+    "  --series UID         the DICOM series to show from a folder holding several (default: the largest)\n"
+    "VOLUME is a .nhdr/.nrrd, .nii/.nii.gz, .mhd/.mha, DICOM (a folder or a file), .den or raw file, or\n"
+    "phantom:NAME:N. Ctrl-C quits.\n";
 
 static vfp_status_t bad(const char *option, const char *value, const char *expected)
 {
@@ -149,8 +152,10 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
             o->mode = (vf_mode_t)m;
         } else if (!strcmp(a, "--view")) {
             double d[3] = {0, 0, 0};
-            if (!vfp_parse_list(v, d, 2, 3) || !(fabs(d[0]) <= 360 && fabs(d[1]) <= 360 && fabs(d[2]) <= 360))
-                return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees, each -360..360");
+            if (!v || vfp_view_named(v, d) != VFP_OK) {
+                if (!vfp_parse_list(v, d, 2, 3) || !(fabs(d[0]) <= 360 && fabs(d[1]) <= 360 && fabs(d[2]) <= 360))
+                    return bad(a, v, "AZ,EL or AZ,EL,ROLL in degrees, each -360..360, or " VFP_VIEW_NAMES);
+            }
             memcpy(o->view, d, sizeof d);
         } else if (!strcmp(a, "--zoom")) {
             if (!vfp_parse_number(v, VFP_ZOOM_MIN, VFP_ZOOM_MAX, &o->zoom))
@@ -185,6 +190,10 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
                 return VFP_ERR;
             }
             o->load.have_type = 1;
+        } else if (!strcmp(a, "--series")) {
+            if (!v || !v[0])
+                return bad(a, v, "a DICOM Series Instance UID");
+            o->load.series = v;
         } else if (!strcmp(a, "--big-endian")) {
             o->load.big_endian = 1;
             takes = 0;

@@ -13,7 +13,8 @@ suite=lighting program=$sim
 . tests/check.inc
 
 # 1. --shade none: the frames of before, bit for bit. One hash per scene of tests/cross/scenes, in its order,
-#    rendered by volfix-sim render SCENE --hash at de9593b (main before lighting in the simulator).
+#    rendered by volfix-sim render SCENE --hash at de9593b (main before lighting in the simulator); scene 10
+#    (engine.nii.gz) since its volume is read in the patient frame (its sform turns x and y round: docs/formats.md).
 cat >"$tmp/before" <<'EOF'
 bc0810fbbd08bdd4
 f113183a360189be
@@ -24,7 +25,7 @@ f113183a360189be
 34ede9d833c5056c
 4eaeed538cf7b8ae
 29dae506a579597e
-0b4e6c032fadcf57
+ca2b77b1f4a4c2ed
 171d7a1b599d8fcf
 0b363ce43378bea9
 ff29279be5306900

@@ -301,7 +301,45 @@ static void overlay_turns_with_the_panel_and_clips(void)
     free(small.pixels);
 }
 
+/* The patient directions at the middle of each edge (vfp_overlay_directions): the letter L alone at the right edge,
+ * R at the left, S at the top, I at the bottom, and nothing in the picture's middle. */
+static void overlay_names_the_edges(void)
+{
+    const int w = 61, h = 41;
+    vf_image_t img = {calloc((size_t)h, (size_t)w * 3), (uint32_t)w, (uint32_t)h, (uint32_t)w * 3, VF_FORMAT_RGB888};
+    vfp_overlay_directions(&img, 0, 1, "L", "R", "S", "I");
+    int box[4][4]; /* per edge (right, left, top, bottom): lit x0, x1, y0, y1 */
+    for (int e = 0; e < 4; e++) {
+        box[e][0] = box[e][2] = 1 << 20;
+        box[e][1] = box[e][3] = -1;
+    }
+    int middle = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            if (!lit(&img, x, y))
+                continue;
+            int e = x >= w - 10 ? 0 : x < 10 ? 1 : y < 12 ? 2 : y >= h - 12 ? 3 : -1;
+            if (e < 0) {
+                middle++;
+                continue;
+            }
+            box[e][0] = x < box[e][0] ? x : box[e][0];
+            box[e][1] = x > box[e][1] ? x : box[e][1];
+            box[e][2] = y < box[e][2] ? y : box[e][2];
+            box[e][3] = y > box[e][3] ? y : box[e][3];
+        }
+    free(img.pixels);
+    CHECK_EQ(middle, 0);
+    for (int e = 0; e < 4; e++)
+        CHECK_MSG(box[e][1] >= 0, "edge %d has no letter", e);
+    /* right and left letters centred vertically, top and bottom centred horizontally */
+    CHECK(box[0][2] > h / 2 - 8 && box[0][3] < h / 2 + 8 && box[1][2] > h / 2 - 8 && box[1][3] < h / 2 + 8);
+    CHECK(box[2][0] > w / 2 - 6 && box[2][1] < w / 2 + 6 && box[3][0] > w / 2 - 6 && box[3][1] < w / 2 + 6);
+    CHECK(box[0][1] >= w - 4 && box[1][0] <= 3 && box[2][2] <= 3 && box[3][3] >= h - 4);
+}
+
 CHECK_CASES({"knobs_turn_the_view_and_wrap", knobs_turn_the_view_and_wrap},
+            {"overlay_names_the_edges", overlay_names_the_edges},
             {"light_shade_and_cycling_knobs", light_shade_and_cycling_knobs},
             {"zoom_compounds_and_clamps", zoom_compounds_and_clamps},
             {"level_and_width_move_the_transfer_function", level_and_width_move_the_transfer_function},

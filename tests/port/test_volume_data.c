@@ -105,11 +105,28 @@ static void data_cthead_is_12_bit(void)
 
 static void data_engine_nifti_equals_nrrd(void)
 {
-    same_voxels("engine.nii.gz", "engine.nhdr");
-    vfp_volume_t vol;
-    LOAD(&vol, "engine.nii.gz");
-    int ok = strcmp(vol.format, "nifti") == 0 && vol.slope == 1.0 && vol.inter == 0.0 && vol.spacing[0] == 1.0;
-    vfp_volume_free(&vol);
+    /* engine.nii.gz's sform is the identity in NIfTI's RAS, so in the patient frame (LPS) its x and y run the other
+     * way; engine.nhdr names no space and stays as stored. */
+    vfp_volume_t nii, nrrd;
+    LOAD(&nii, "engine.nii.gz");
+    char why[1100];
+    if (load(&nrrd, "engine.nhdr", why, sizeof why) != 0) {
+        vfp_volume_free(&nii);
+        CHECK_MSG(0, "%s", why);
+    }
+    const uint32_t *d = nrrd.core.dims;
+    int same = nii.core.type == nrrd.core.type && memcmp(nii.core.dims, d, sizeof nrrd.core.dims) == 0;
+    const uint8_t *a = nii.data, *b = nrrd.data;
+    for (uint32_t z = 0; same && z < d[2]; z++)
+        for (uint32_t y = 0; same && y < d[1]; y++)
+            for (uint32_t x = 0; same && x < d[0]; x++)
+                same = a[((size_t)z * d[1] + y) * d[0] + x] == b[((size_t)z * d[1] + (d[1] - 1 - y)) * d[0] + (d[0] - 1 - x)];
+    int ok = strcmp(nii.format, "nifti") == 0 && nii.slope == 1.0 && nii.inter == 0.0 && nii.spacing[0] == 1.0 &&
+             nii.oriented && strcmp(nii.orient_from, "sform") == 0 && nii.oblique_deg == 0 && nii.stored_flip[0] &&
+             nii.stored_flip[1] && !nii.stored_flip[2] && !nrrd.oriented;
+    vfp_volume_free(&nii);
+    vfp_volume_free(&nrrd);
+    CHECK_MSG(same, "engine.nii.gz in LPS is not engine.nhdr with x and y reversed");
     CHECK(ok);
 }
 

@@ -254,9 +254,11 @@ static void nifti_errors(void)
     unsigned char tiny[100] = {0x5c, 0x01};
     p = fx_write("tiny.nii", NULL, tiny, sizeof tiny);
     fx_expect_error(p, NULL, p, ": too short for a NIfTI-1 header: 100 bytes (expected at least 348)");
-    unsigned char two[600] = {0x1c, 0x02, 0, 0, 'n', '+', '2', 0};
+    unsigned char two[600] = {0x1c, 0x02, 0, 0, 'n', '+', '2', 0}; /* NIfTI-2 whose magic lost its \r\n\032\n */
     p = fx_write("two.nii", NULL, two, sizeof two);
-    fx_expect_error(p, NULL, p, ": NIfTI-2 is not supported");
+    fx_expect_error(p, NULL, p, ": bad magic: the bytes after 'n+2' are not \\r\\n\\032\\n");
+    p = fx_write("two-short.nii", NULL, two, 400);
+    fx_expect_error(p, NULL, p, ": too short for a NIfTI-2 header: 400 bytes (expected at least 540)");
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
