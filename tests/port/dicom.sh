@@ -50,8 +50,9 @@ for view in 30,20 anterior left superior; do
         hash "ct16-nrrd-$view" "$d/ct16.nrrd" --window -300,900 --view "$view" &&
         same "16-bit signed, HU rescale, unsorted names, view $view" "ct16-$view" "ct16-nrrd-$view"
 done
-if grep -q 'window -300,900' "$tmp/ct16-30,20.out"; then
-    ok "rescale: --window -1324,-124 HU is raw -300,900"
+# the summary speaks the data's unit, HU here, as --window does (the frame is the NRRD's raw -300,900: above)
+if grep -q 'window -1324,-124' "$tmp/ct16-30,20.out"; then
+    ok "rescale: --window -1324,-124 HU is raw -300,900, and the summary says it in HU"
 else
     fail "rescale" "$(cat "$tmp/ct16-30,20.out")"
 fi

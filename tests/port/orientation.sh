@@ -69,5 +69,5 @@ else
     done
 fi
 
-expect_error "unknown view name" "--view front: expected AZ,EL or AZ,EL,ROLL in degrees, or anterior, posterior, left, right, superior or inferior" \
+expect_error "unknown view name" "--view front: expected AZ,EL or AZ,EL,ROLL in degrees, each -360..360, or anterior, posterior, left, right, superior or inferior" \
     render "$o/reference.nrrd" --view front --hash
