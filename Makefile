@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # volfix: build, demo, tests and packaging.
 #
 #   make            build what this machine's packages allow: the core (build/libvolfix.a), the port layer, volfix,

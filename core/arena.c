@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * arena.c: the core's only memory source. The caller owns the buffer; the core moves a cursor through it and
  * can rewind to a mark (the renderer rebuilds its transfer-function-dependent part that way). Nothing is ever

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* arena.h: internal allocation from the caller's arena (vf_arena_t in volfix.h). */
 #ifndef VF_ARENA_H
 #define VF_ARENA_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * classify.c: sample the transfer function at the table entries and derive what the table builders and the
  * run-length encoder need. Entry i stands for scalar s_i = i * 255 / (N - 1); a sample s is looked up at entry

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * classify.h: a transfer function sampled at the table's N entries (docs/algorithm.md, section 2): extinction
  * and colour per entry, the colour weight of each interval between entries, and what the run-length encoder

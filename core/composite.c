@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * composite.c: slabs front to back into the intermediate image, one band of intermediate rows at a time
  * (docs/algorithm.md, sections 4 and 4b): the band's script. For each slice (order 0) and each row of the band it

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * composite.h: what the compositing files share (docs/algorithm.md, sections 4 and 4b). composite.c runs a band:
  * it places each slice in the intermediate image, merges the run-length encoding's visible runs of a row and hands

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * composite_order0.c: the rows of one slice in the order-0 modes (docs/algorithm.md, sections 4 and 4b): each open
  * pixel of the visible runs takes its sample's point-table entry (point) or the interpolation of its four voxels'

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * composite_order1.c: the rows of one slab in preint1 (docs/algorithm.md, sections 4 and 4b), all in one call: each
  * open pixel of the visible runs takes the pre-integrated entry of its front and back sample.

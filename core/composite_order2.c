@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * composite_order2.c: a band of preint2 (docs/algorithm.md, section 8): slabs of two slices, k = 0, 2, 4, ..., each
  * open pixel of the visible runs taking the order-2 entry of its front, middle and back sample; and, when the

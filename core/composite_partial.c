@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * composite_partial.c: partial slabs at the volume's side faces (docs/algorithm.md, section 4c).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * factor.c: the shear-warp factorisation of a parallel view (docs/algorithm.md, section 3).
  *

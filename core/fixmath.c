@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * fixmath.c: integer trigonometry, exponential, logarithm, square root and division for the core.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * fixmath.h: integer arithmetic the core needs (trigonometry, exp, log, square root, 64-bit division).
  * Formats are in the names: _q30 is Q.30 (1.0 = 2^30), _q28 Q.28, and so on.

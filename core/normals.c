@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * normals.c: normal codes and gradient magnitudes from central differences of the voxels as stored
  * (docs/algorithm.md, section 7), and the unit normal of each code.

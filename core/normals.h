@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * normals.h: per-voxel normal codes and gradient magnitudes for lighting (docs/algorithm.md, section 7), made once
  * per volume from the voxels as stored, and kept one copy per principal axis in the slices' layout (slices.h), so

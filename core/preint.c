@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * preint.c: the pre-integrated table in O(N^2) by incremental subrange integration (Lum, Wilson and Ma 2004;
  * docs/algorithm.md section 2, tables.h), integer only. Its oracle is the brute force in tables.c.

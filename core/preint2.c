@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * preint2.c: the order-2 table from first-order pieces (docs/algorithm.md section 8, preint2.h), integer only. Its
  * oracle is the double reference's build (host-sim/ref/ref_order2.c), entry by entry.

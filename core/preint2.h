@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * preint2.h: order 2 (docs/algorithm.md, section 8; El Hajjar, Marchesin, Dischler and Mongenet 2008): the 3D table
  * T2[front][middle][back] of a slab of two slices, built from first-order pieces (preint2.c), and what compositing

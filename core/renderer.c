@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * renderer.c: the renderer's life (create, window, transfer function) and a frame's script: check, factor,
  * bring the tables up to date, composite, warp. Memory layout and invariants are in renderer.h.

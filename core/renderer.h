@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * renderer.h: the renderer's private state, shared by the stage files (renderer.c, composite.c, warp.c).
  *

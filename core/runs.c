@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* runs.c: run-length encode the visible cells of one standard-order copy (see runs.h). */
 #include "arena.h"
 #include "runs.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * runs.h: run-length encoding of the visible cells, per principal axis.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * segment.h: what one segment (a slice sample, or a slab) adds to a pixel: the table entry, looked up nearest or
  * bilinear in an 8- or 16-bit table, corrected for the slab length by the lut if asked (docs/algorithm.md,

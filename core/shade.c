@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * shade.c: a frame's shade table (docs/algorithm.md, section 7): Blinn-Phong for every normal code, in integers.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * shade.h: lighting as compositing reads it (docs/algorithm.md, section 7): the shade table of a frame (every normal
  * code's diffuse and specular light), the gradient-opacity ramp, and a sample's shade from its voxels' codes.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * slices.c: the windowed 8-bit volume, one padded copy per principal axis (see slices.h).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * slices.h: the volume as 8-bit scalars (after the window), stored three times, once per principal axis, in
  * standard object order: for principal axis k, slice k holds n_j + 1 rows of n_i + 1 scalars. The extra column

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* status.c: a text for every status, and the names of modes and formats. */
 #include "volfix.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * table_store.h: how the table builders round a Q.30 value (1.0 = 2^30) into the three table formats of
  * tables.h, shared by tables.c (point table, brute force) and preint.c (the incremental builder) so that they

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * tables.c: the point table, the brute-force pre-integrated table (the oracle of the incremental builder in
  * preint.c), the lut correction and the public table entry points (docs/algorithm.md, section 2), integer only.

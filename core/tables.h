@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * tables.h: the lookup tables compositing reads, built from a classification for one slab length
  * (docs/algorithm.md, section 2). An entry is four values, premultiplied r, g, b and opacity a, either Q1.15

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* version.c: the library's version as text, from volfix.h's numbers, so that the two cannot disagree. */
 #include "volfix.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * vf_config.h: every build-time setting of the core in one place (as Lua's luaconf.h). Each has a default that
  * a build may override with -D.

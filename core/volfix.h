@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * volfix.h: the public interface of the volfix core.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * volfix_internal.h: what volfix's own tests and simulator reach into, beyond the public interface of volfix.h.
  * Not installed: nothing here is promised to users, and it may change with any version.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * warp.c: resample the intermediate image onto the final image, one band of output rows at a time
  * (docs/algorithm.md, section 5).

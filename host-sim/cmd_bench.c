@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * cmd_bench.c: volfix-sim bench: the protocol of Schulze et al. 2003: rotate 180 degrees about the vertical
  * axis in 2-degree steps (90 frames) and report the mean time per frame, with the time to build the 8-bit

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_compare.c: volfix-sim compare: the core's image against the double reference's (or the ground truth's),
  * pixel by pixel. */
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_diff.c: volfix-sim diff: two PNG images compared pixel by pixel (a viewer's frame against volfix-sim
  * render, a board's screenshot against a reference), with the same measures as compare. */
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * cmd_ray.c: volfix-sim ray: El Hajjar et al. 2008's study of one ray (their Figures 1-5): the trilinear signal
  * along the ray through one final pixel, its order 0, 1 and 2 reconstructions from shear-warp's samples at

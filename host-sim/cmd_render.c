@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* cmd_render.c: volfix-sim render: one image, with the fixed-point core, the double reference or the truth. */
 #include <stdio.h>
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * cmd_study.c: volfix-sim study: what to run. One factor at a time around the default configuration, and the
  * pairs that interact (table size with lookup; mode with smooth and sharp transfer functions; rays per voxel

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * cmd_tables.c: volfix-sim tables: build a pre-integrated table with each builder (the core's O(N^2)
  * incremental one, its O(N^3) brute-force oracle), time them, measure them against the double reference

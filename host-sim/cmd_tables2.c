@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * cmd_tables2.c: volfix-sim tables --order 2: build the order-2 table of a transfer function (docs/algorithm.md,
  * section 8) with the core, time it (the median of repeats, on one thread or in parts on several), give its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* commands.h: volfix-sim's commands; each takes the arguments after its name and returns the program's exit
  * status: VFP_EXIT_OK, SIM_EXIT_DIFFERENT when a check the user asked for failed, or VFP_EXIT_ERR for bad input
  * or usage (status.h). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* imgcmp.c: image differences (see imgcmp.h). */
 #include "imgcmp.h"
 

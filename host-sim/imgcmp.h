@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* imgcmp.h: how far apart two 8-bit RGB images are, and a picture of where. */
 #ifndef SIM_IMGCMP_H
 #define SIM_IMGCMP_H

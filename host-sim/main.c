@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * main.c: volfix-sim, the host simulator: renders with the fixed-point core, checks it against a
  * double-precision reference of the same algorithm, and times it.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* options.c: parse the options volfix-sim's commands share (see options.h). */
 #include "options.h"
 #include "io/numbers.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* options.h: the command-line options volfix-sim's commands share. */
 #ifndef SIM_OPTIONS_H
 #define SIM_OPTIONS_H

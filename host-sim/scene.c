@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene.c: load a scene and render it with the core or the reference (see scene.h). */
 #include "scene.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * scene.h: one scene (volume, window, transfer function, parameters, view, output size and format), rendered
  * by the fixed-point core, by the double-precision reference or by the ground-truth ray caster from the same

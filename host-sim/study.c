@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* study.c: running the precision study (see study.h). */
 #include "study.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * study.h: the fixed-point precision study: render scenes with many configurations of the core, measure each
  * against the double reference of the same algorithm (the fixed-point error alone) and against the ground

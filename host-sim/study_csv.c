@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* study_csv.c: results.csv, one row per run of the precision study: its scene, configuration and measures. */
 #include <stdio.h>
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * study_floor.c: how much of shear-warp's distance from the ground truth is the slab integration, and how much
  * the intermediate image's resolution (one ray per voxel column, or R x R: docs/algorithm.md section 4b) and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* study_json.c: summary.json, one object with the numbers the precision study's claims rest on, for tests and
  * scripts. */
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* study_lit.c: the lighting stages of the precision study (docs/algorithm.md section 7), each on its own around
  * the lit default (preint1, one headlight, VTK's material, 14-bit normals, bilinear shade lookup):
  *   normal_bits     the core with 8..16-bit normal codes against the double reference lit with unquantised

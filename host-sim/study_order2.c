@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* study_order2.c: the precision study of preint2's 3D table (volfix-sim study --order2-only): its resolution N2
  * (16..128 a side) and entry bits (16, 12, 10, 8) against the double reference at full precision (the fixed-point
  * error), against the trilinear and the smooth truth (the algorithm's error), and the memory each takes; a plot,

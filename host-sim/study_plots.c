@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* study_plots.c: the precision study's plots: for each, NAME.dat (the data) and NAME.gp (the gnuplot script) in the
  * study's directory, and NAME.png drawn by running gnuplot on them. */
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* study_recommend.c: report.md's recommendations, derived from the precision study's runs: the smallest safe
  * precision of each stage, (a) a Raspberry Pi class board, (b) a microcontroller with 256 KB of RAM. */
 #include <math.h>

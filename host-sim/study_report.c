@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * study_report.c: what the precision study writes, and report.md. study_write_report writes results.csv
  * (study_csv.c), the plots (study_plots.c), image strips of the same view in each order with their differences

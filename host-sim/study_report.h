@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * study_report.h: what the precision study's writers share and no one else uses: the runs looked up by scene,
  * factor and value, what a run cost, the numbers the claims rest on, and the writers themselves, one file each

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* study_results.c: the study's results looked up for its writers: runs by scene, factor and value, what a run
  * cost, the scenes' magnification, and the numbers the claims rest on (see study_report.h). */
 #include <math.h>

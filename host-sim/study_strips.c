@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* study_strips.c: the precision study's image strips (PNG): the same view in each order and the truth; below,
  * each order's difference from the truth. */
 #include <stdlib.h>

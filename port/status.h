@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * status.h: what a port-layer function that can fail returns (host-sim's functions return the same), and the
  * exit status a program makes of it.

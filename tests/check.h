@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * check.h: the smallest test framework that does the job. A test file lists its cases in a table and calls
  * check_main; each case prints "ok - suite/name" or "not ok - suite/name: file:line: what failed", and the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * fixtures.h: files a test writes while it runs, in a private temporary directory that is removed, with all that
  * was made in it (by the test or by the code under test), when the test program exits. Header-only and static

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Run the test suites: the compiled ones ($BUILD/tests/**/test_*) and the shell ones (tests/**/*.sh; tests/hw and
 # tests/long boot a VM or run for minutes and have their own targets, make test-hw and make test-long), TEST_JOBS
 # at a time (default: the processors online), the slowest of the last run first. Each suite writes to a file of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * wide.h: exact 128-bit unsigned arithmetic for the tests' oracles, in portable C.
  *

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # make bench: the frame-time protocol of Schulze et al. (90 frames, 2 degrees apart) as their Table 1 (every
 # pre-integration variant against point sampling), the table builders, and instructions per frame from
 # callgrind (which a noisy machine does not change). Frame times are measured in ROUNDS rounds (default 3):

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The target's zlib and libpng for a cross build, as static libraries and headers in a private directory:
 # Debian's own -dev packages for that architecture, fetched with `apt-get download` and unpacked with dpkg-deb.
 #

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # make run: render a few images into out/ with the fixed-point core and say how far each is from the
 # double-precision reference of the same algorithm. Needs no data: the phantoms are built in; the sample volumes
 # come from the folder VOLFIX_DATA (make exports it) when it is there.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Install the Debian packages that `make run` or `make test` need, when they are missing.
 # As root it runs apt-get itself; otherwise it prints what is missing and the one command that installs it, and
 # carries on: the build leaves out what it cannot build (and says so), and tests/run.sh counts every suite that

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tools/eval-orders.sh: is second order better? Each scene's two truths (trilinear and smooth: a phantom's own
 # function, Catmull-Rom for real volumes) are rendered once, then each configuration's core image is compared
 # with both: PSNR and the ray error xi, the mean absolute difference of the final pixel colours in [0, 1] over

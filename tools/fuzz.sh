@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Run the libFuzzer harnesses built by `make fuzz` (tests/fuzz/README.md), FUZZ_JOBS at a time (default: the
 # processors online), each for SECONDS, and print one line per harness:
 #   fuzz_nrrd: 1234567 runs in 60 s, cov 812, ft 2990, corpus 431 files

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # tools/orders-picture.sh: docs/images/orders.png, the same scenes in order 0, 1, 2 and the smooth truth. Top:
 # phantom:marschner-lobb:41, sharp, 30,20, 256x256 (the truth is Marschner-Lobb's own function); bottom:
 # brainsmall (VOLFIX_DATA, default ../shared/data), sharp, 30,20, zoom 1.8, 256x256 (the truth Catmull-Rom).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * gen_scene.c: a host program that writes the firmware's scene as a C header.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * main.c: the volfix core on a Cortex-M4 (the MPS2 AN386 board, or qemu-system-arm -M mps2-an386).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* semihost.c: Arm semihosting calls (see semihost.h) and the two number formatters the report needs. */
 #include "semihost.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * semihost.h: text out and exit through Arm semihosting: a `bkpt 0xab` that the debugger, or qemu run with
  * -semihosting, serves on the host. The firmware has no UART driver and no libc; this is its only output.

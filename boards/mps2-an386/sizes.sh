@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The sizes `make mcu` prints: the core for a Cortex-M4 per object as compiled (.text includes constants, as
 # arm-none-eabi-size counts them), the core as linked into the firmware (what --gc-sections kept, read from the
 # link map), the largest functions, and the firmware as a whole.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * startup.c: the vector table and the reset handler, in C, with no libc. At reset the Cortex-M4 loads its stack
  * pointer from word 0 and jumps to word 1; the handler paints the stack (to measure it later), copies .data's

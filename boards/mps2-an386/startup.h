@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* startup.h: what the reset code tells main: how much stack there is and how much of it has been touched. */
 #ifndef STARTUP_H
 #define STARTUP_H

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The pictures of docs/defaults.md: the 16-bit default window before (the 0.5 and 99.5 percentiles) and after
 # (the 99.99 percentile, capped at twice the 99.5's distance), on cthead and headsq with ct-skin-bone and on a
 # generated volume of soft tissue with a wire. Usage: docs/images/defaults.sh (from the repository's top, after

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ref.h: the double-precision reference renderer, docs/algorithm.md implemented literally.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_factor.c: the shear-warp factorisation of a parallel view and its warp map (section 3). */
 #include "ref/ref.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_normals.c: gradients, normal codes and 8-bit gradient magnitudes of the voxels as stored (section 7).
  *
  * Section 7 defines the codes and magnitudes in integers, exactly, so that both implementations light with the

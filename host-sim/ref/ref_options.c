@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_options.c: the options of section 4b that change a segment's value: bilinear table lookup, 8-bit tables and
  * the lut correction of the slab length. (Mode preclass is compositing: ref_render.c.) */
 #include "ref/ref.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_order2.c: order 2 in double (section 8): the 3D table from the pieces of the 2D table, entry by entry, and its
  * lighting values; its lookup; and preint2's frames (slabs of two slices, the last of an odd count of one), lit or
  * not. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_render.c: compositing into the intermediate image, lit or not, the warp, and the whole frame (sections 4, 4b,
  * 4c, 5 and 7). */
 #include "ref/ref.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_shade.c: lights, Blinn-Phong shading of a normal, the gradient-opacity factor, and lit segments
  * (section 7), in double with libm. */
 #include "ref/ref.h"

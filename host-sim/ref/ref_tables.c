@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_tables.c: transfer function, classification, point table and brute-force pre-integrated table (section 2),
  * and the front-weighted table of lit slabs (section 7). */
 #include "ref/ref.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* ref_window.c: raw voxels to the 8-bit scalar domain (docs/algorithm.md, section 1). */
 #include "ref/ref.h"
 

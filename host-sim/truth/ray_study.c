@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ray_study.c: El Hajjar et al. 2008's study of one ray. The signal along the ray (trilinear, or a smooth field)
  * against what shear-warp reconstructs from its samples on the slices: order 0 (each sample held over its own

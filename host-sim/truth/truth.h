@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * truth.h: the ground truth, a double-precision ray caster of the continuous model that shear-warp approximates.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* truth_ray.c: the truth's camera (section 3), trilinear reconstruction, and one ray walked cell by cell, lit or
  * not. */
 #include "truth/truth.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* truth_render.c: rows of rays interleaved over threads (every ray is independent), and a whole truth image. */
 #include "truth/truth.h"
 

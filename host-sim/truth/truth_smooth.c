@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* truth_smooth.c: the truth's smooth reconstructions (Catmull-Rom, cubic B-spline, a phantom's own function) and
  * the ray walk through them (truth.h, "truth_smooth.c"). */
 #include "truth/truth.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* truth_tf.c: the continuous transfer function, and the exact integration of a linear scalar segment through it,
  * lit or not. */
 #include "truth/truth.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* board.c: read a board file (board.h; every key is described in boards/README.md) into a vfp_board_t, with one
  * "FILE:LINE: what was expected" line for anything wrong. This file reads the lines and sets each key on its own;
  * board_check.c takes over once the last line is read (defaults, and checks across keys), and board_names.c holds

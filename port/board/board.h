@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * board.h: a board is a text file (boards/NAME.board), not code: which display backend and device, the size,
  * pixel format and rotation, which input backend, the GPIO chip (by label) and lines, and what each knob and

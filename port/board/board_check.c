@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* board_check.c: a board file once every line is read (board.c): the defaults of what it does not give, then the
  * checks that need more than one key: every knob and button has what its input backend needs, indices are dense,
  * a button's code is read in the backend's terms, and no line, axis or key serves two controls. */

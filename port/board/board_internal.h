@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * board_internal.h: what the board file's reader shares between its files and no one else: board.c reads the
  * file line by line and sets each key, board_check.c fills the defaults and checks the file as a whole once it is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* board_names.c: the names a board file's values may take, and what each stands for: formats, pulls, booleans,
  * actions, evdev axes and key codes (linux/input-event-codes.h) and SDL 2's key names. Each table is looked up
  * by name (board_internal.h); vfp_action_name() (board.h) goes the other way. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* display.c: the display backends compiled into this build, and finding the one a board names (see display.h). */
 
 /*********************

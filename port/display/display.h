@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * display.h: a display is a small table of operations (as LVGL's display drivers): open it, present a rectangle
  * of pixels, close it. Each backend lives in its own file (display_drm.c, display_fbdev.c, display_gud.c,

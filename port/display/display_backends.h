@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * display_backends.h: the display backends' ops tables and the seams their tests drive, for the registry
  * (display.c) and tests, not for applications: a program (the viewer) finds its backend with vfp_display_find()

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * display_drm.c: Linux DRM/KMS with a dumb buffer: the default on current Raspberry Pi OS (vc4), and also SPI
  * panels through panel-mipi-dbi and USB displays through the kernel's gud driver. Those last two only send what

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * display_fbdev.c: a Linux framebuffer device (/dev/fbN; the board's display.device, default /dev/fb0), as
  * older SPI panel overlays (fbtft) provide. The visible resolution is the display's size; the framebuffer must

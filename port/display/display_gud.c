@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * display_gud.c: a GUD (Generic USB Display) driven from user space with libusb, for boards whose kernel lacks
  * the gud driver or where the viewer should own the display outright. The protocol is the kernel's

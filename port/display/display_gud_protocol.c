@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * display_gud_protocol.c: the pure parts of the GUD backend (gud_protocol.h): packing requests, parsing replies,
  * splitting a rectangle to the device's buffer and choosing compression. Byte by byte, little-endian, with no

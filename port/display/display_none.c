@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * display_none.c: a display that shows nothing: every frame is rendered and dropped. For the long-run test
  * (10,000 frames without 10,000 files) and for timing the viewer without a display's cost. The board gives the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * display_png.c: a display that writes every presented frame to DIR/frame-NNNNN.png (numbered from 0), for the
  * headless board and the viewer's end-to-end test, which compares the frames with volfix-sim render.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * display_sdl.c: an SDL2 window titled "volfix" on a desktop, board width x height (shown twice as large when the
  * longer side is under 320 pixels, so a small panel's layout stays readable). Frames go into a streaming texture

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * gud_protocol.h: the GUD (Generic USB Display) protocol, as the Linux kernel's host driver speaks it, and the
  * pure helpers display_gud.c builds on (display_gud_protocol.c: packing requests, parsing replies, splitting a

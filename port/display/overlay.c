@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* overlay.c: a 5x7 bitmap font drawn into any of the core's pixel formats, and the patient directions at the
  * picture's edges (see overlay.h). */
 #include "overlay.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * overlay.h: a line of text drawn into an image (the viewer's frame-time overlay): a built-in 5x7 font of
  * digits, capital letters and a little punctuation (lower case is drawn as capitals), white on a dark box,

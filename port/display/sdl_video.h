@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * sdl_video.h: SDL's video subsystem is process-wide, and both the SDL display (display_sdl.c) and the SDL keys
  * (input_sdl.c) need it. Each calls vfp_sdl_init() when it opens and vfp_sdl_quit() when it closes; the first

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* controls.c: input events to view and transfer-function changes (see controls.h). */
 #include "controls.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * controls.h: what the knobs and buttons control, and how an input event changes it. The viewer holds one
  * vfp_controls_t; the board file says which knob or button does what (board.h). Pure functions, tested alone.

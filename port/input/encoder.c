@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* encoder.c: the pure helpers the input backends share (input.h): quadrature decoding of a rotary encoder, and
  * software debouncing of a push button. No I/O and no clock: the caller passes levels and times. */
 #include "input.h"

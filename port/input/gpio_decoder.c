@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gpio_decoder.c: the GPIO backend's decoder (declared in input_backends.h), compiled in every build, with or
  * without libgpiod, so that tests drive it with synthetic edges. It takes (line, level, time) edges: it merges the
  * lines' edges in time order, tracks each line's level, feeds encoders to the quadrature table and buttons to the

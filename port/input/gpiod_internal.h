@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * gpiod_internal.h: what the GPIO input backend's files share and no one else: input_gpiod.c (the ops table and
  * everything that does not depend on libgpiod's version), gpio_decoder.c (edges to events; its interface is in

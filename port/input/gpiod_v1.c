@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gpiod_v1.c: the GPIO backend's lines through libgpiod 1.6 (Debian 12, Raspberry Pi OS bookworm): a chip by label,
  * one event request per line, one fd per line, and an epoll fd over them when there are several. Compiled only
  * when the Makefile finds libgpiod 1.x (VFP_HAVE_GPIOD, VFP_GPIOD_MAJOR == 1); gpiod_v2.c does the same with 2.x.

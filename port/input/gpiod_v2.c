@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* gpiod_v2.c: the GPIO backend's lines through libgpiod 2.x: a chip by label (found by walking /dev/gpiochip*),
  * one request for all the lines, one fd. Compiled only when the Makefile finds libgpiod 2.x (VFP_HAVE_GPIOD,
  * VFP_GPIOD_MAJOR == 2; make test-hw builds it against a private copy); gpiod_v1.c does the same with 1.6. The

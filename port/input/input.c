@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* input.c: the input backends compiled into this build, and finding one by the name a board file gives. */
 #include "input.h"
 #include "input_backends.h" /* each backend's table, defined in its own file when its library is there */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * input.h: an input is a small table of operations (as LVGL's input drivers): open it, give a file descriptor to
  * poll (or -1 with a deadline), read the events that arrived, close it. Backends: input_gpiod.c (rotary encoders

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * input_backends.h: the input backends' ops tables and the seams their tests drive, for the registry (input.c)
  * and tests, not for applications: a program finds its backend with vfp_input_find() (input.h), and nothing here

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* input_evdev.c: knobs and buttons that the kernel already decodes: the rotary-encoder overlay (EV_REL, REL_X or
  * REL_DIAL, each event whole detents) and gpio-keys (EV_KEY press and release). Every device the board names is
  * opened non-blocking and must answer EVIOCGVERSION (a path to something else is refused at open); several

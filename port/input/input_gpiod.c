@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* input_gpiod.c: rotary encoders and push buttons on GPIO lines, through libgpiod 1.6 (Debian 12, Raspberry Pi OS
  * bookworm) or 2.x, chosen at build time (VFP_HAVE_GPIOD, VFP_GPIOD_MAJOR). The chip is found by its label
  * (pinctrl-bcm2711, pinctrl-rp1...), never by number, which changes between kernels.

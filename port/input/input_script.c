@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* input_script.c: scripted input for the simulator and tests. A text file of timestamped events, one a line
  * (boards/README.md, "Input scripts"):
  *

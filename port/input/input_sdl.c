@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* input_sdl.c: the keys of the SDL window (VFP_HAVE_SDL) as knobs and buttons, for a desktop. The window belongs to
  * the SDL display (display_sdl.c); SDL itself is shared through sdl_video.h. A key press of a knob's key_up or
  * key_down turns it one detent (held down, the key's auto-repeat keeps turning it); a button's key gives press and

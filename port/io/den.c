@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* den.c: the VolPack .den reader (a 62-byte little-endian header of 16-bit fields, then 8-bit voxels, x fastest). */
 
 /*********************

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * dicom.cpp: the DICOM reader over GDCM, the port layer's one C++ file; its C interface and what it promises are in
  * dicom.h. GDCM parses the files and decodes every transfer syntax it knows (JPEG, JPEG-LS, JPEG 2000, RLE,

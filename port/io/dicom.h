@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * dicom.h: the DICOM reader's C interface (port/io/dicom.cpp, C++ over GDCM, compiled when the Makefile finds GDCM:
  * VFP_HAVE_GDCM). Without GDCM the loader is the inline below, which says how to get it, and the rest of the port

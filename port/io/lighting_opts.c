@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lighting_opts.c: the lighting options of volfix-sim and volfix, and the lighting they make (see
  * lighting_opts.h). */
 #include "lighting_opts.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * lighting_opts.h: the lighting options volfix-sim and volfix share (docs/usage.md, "Lighting"), parsed in one
  * place, and the renderer's lighting made of them and of the transfer function's own (tf.h, vfp_tf_look_t).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* metaimage.c: the MetaImage reader (ITK/VTK's .mhd with its data file, or .mha with the data inside; raw or zlib;
  * 8- and 16-bit scalars in 3D; the patient orientation from TransformMatrix or AnatomicalOrientation). */
 

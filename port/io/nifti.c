@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* nifti.c: the NIfTI-1 and NIfTI-2 reader (single-file .nii and .nii.gz, either byte order, 8- and 16-bit integer
  * voxels, the patient orientation from the sform or the qform). */
 

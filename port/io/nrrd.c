@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* nrrd.c: the NRRD reader (NRRD0001..0005; attached or detached data; raw, gzip, ascii or hex; 8- and 16-bit scalars
  * in 3D; the patient orientation from space and space directions). */
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* numbers.c: numbers, lists of numbers, integers and sizes from the command line (see numbers.h). */
 #include "numbers.h"
 

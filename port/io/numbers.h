@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * numbers.h: the one parser of numbers on the command line, for volfix and volfix-sim alike (and the lighting
  * options both share), so that an option takes the same numbers in either program.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* orientation.c: a volume turned into the patient frame (LPS) on load, named views and the letters at a view's edges. */
 
 /*********************

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* phantom.c: synthetic uint8 volumes (Marschner-Lobb, 3D Shepp-Logan, a radial sphere, a uniform cube): a first run
  * needs no data. */
 

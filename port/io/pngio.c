@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pngio.c: PNG files through libpng (see pngio.h). */
 #include "pngio.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* pngio.h: images to and from PNG files (libpng), for the simulator, tests and the headless board. */
 #ifndef VFP_PNG_H
 #define VFP_PNG_H

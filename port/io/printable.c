@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* printable.c: error messages made one printable line (printable.h). */
 #include "printable.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* raw.c: the reader for raw voxels (plain, or gzip'd when the name ends in .gz) with dims and type given. */
 
 /*********************

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* readfile.c: whole text inputs read once with a cap (see readfile.h). */
 #include "readfile.h"
 

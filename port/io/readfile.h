@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * readfile.h: a whole text input read once, front to back, with a cap on its size: transfer functions, knob
  * scripts and board files. Once, because the input may be a pipe or a FIFO (volfix-sim --tf <(...)), which gives

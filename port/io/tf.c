@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* tf.c: transfer-function files, presets, and their conversion to the core's control points (see tf.h). */
 #include "tf.h"
 #include "numbers.h"

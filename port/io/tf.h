@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * tf.h: transfer functions as people write them (a small text format, or a built-in preset), and their
  * conversion to the core's control points for a volume and window.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* volume.c: loading a volume by name (choosing the reader), freeing it, and windows, dims and types from text. */
 
 /*********************

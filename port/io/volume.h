@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * volume.h: reading volumes into memory for the core (NRRD, NIfTI-1 and -2, MetaImage, DICOM when built with GDCM,
  * VolPack .den, raw, synthetic phantoms), turning them into the patient frame, and choosing the window that maps

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * volume_downsample.c: a volume made smaller by a whole factor in each direction (the box average of each
  * factor^3 block, rounded to nearest), with the spacing multiplied by the factor so that the volume keeps its

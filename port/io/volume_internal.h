@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * volume_internal.h: what the volume readers share (error text, checks, byte order, reading voxel data exactly).
  *

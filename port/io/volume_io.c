@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* volume_io.c: the helpers the volume readers share: error text, checks, byte order, exact reads (plain or gzip). */
 /*********************
  *      INCLUDES

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* image.c: images in malloc'd memory, and their hash (see image.h). */
 #include "image.h"
 

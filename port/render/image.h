@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * image.h: images of the core's pixel formats in malloc'd memory, and the hash that says two frames are the
  * same (across architectures, threads, and on a microcontroller that can only print a number).

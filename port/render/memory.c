@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* memory.c: what rendering a volume needs, and what the machine has (see memory.h). */
 #include "memory.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * memory.h: what rendering a volume needs, told before it is allocated. A volume too large for the machine is
  * refused with one line, "FILE: 4096x4096x4096 needs 262144 MB (23543 available)", rather than left to the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* render_mt.c: the core renderer with malloc'd memory and pthreads (see render_mt.h). */
 #include "render_mt.h"
 

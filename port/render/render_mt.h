@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * render_mt.h: the core renderer with its memory and threads provided: an arena from malloc sized by the
  * core's own queries (grown when a transfer function needs longer run lists), a stale pre-integrated table

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* loop.c: the viewer's event loop (see viewer.h). */
 #include "viewer.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * main.c: volfix, the knob-driven viewer: options, set-up and the closing summary (the loop is loop.c).
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* scene.c: bringing a renderer up to date with the controls, and rendering a frame of them (see viewer.h). */
 #include "viewer.h"
 

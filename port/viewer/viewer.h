@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * viewer.h: the knob-driven viewer (build/volfix), in four files:
  *   main.c    options, set-up and the closing summary

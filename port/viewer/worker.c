@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* worker.c: the full-quality renderer's thread (see viewer.h). */
 #include "viewer.h"
 

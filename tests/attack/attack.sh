@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The attack suite: bad input, as classes (docs/usage.md, "Bad input"), against both programs. The cases are in
 # tests/attack/*.cases, one a line:
 #

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # make install and make uninstall, as a packager runs them:
 #   1. make install PREFIX=/usr/local DESTDIR=TMP from this build puts the libraries, the public headers,
 #      volfix.pc, the programs and the boards (with the script a board names) where they belong, and rebuilds

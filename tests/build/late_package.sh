@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # An optional package that arrives after the first build. On a fresh clone `make run` once built the tests before
 # `make test` installed umockdev, and nothing rebuilt them; port objects built without a backend were never
 # rebuilt once its library appeared. This plays that in a copy of the tree, with pkg-config looking at a copy of

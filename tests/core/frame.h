@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* frame.h: vf_renderer_begin with its options as arguments, for tests that begin many frames of a view and size. */
 #ifndef TESTS_CORE_FRAME_H
 #define TESTS_CORE_FRAME_H

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The core's rules, proved by the compilers: freestanding C99, no floating point, nothing from libc.
 # - aarch64 with -mgeneral-regs-only rejects any floating-point value, operation or register;
 # - linking with -nostdlib and --no-undefined fails on any call into libc (or anywhere outside the core);

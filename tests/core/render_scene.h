@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * render_scene.h: the scenes of test_render.c and test_render_api.c, two halves of one suite that draw from one
  * seed: a random ball in noise of up to MAXD^3 voxels (or a long thin one), a random transfer function, a renderer

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * scene_fixture.h: what the core suites build their frames from: a ball in noise, a random transfer function,
  * and a renderer over a caller's arena buffer with the identity window and a transfer function set. Header-only

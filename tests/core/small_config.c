@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * small_config.c: one program built twice by small_config.sh, against the whole core and against the smallest
  * configuration of core/vf_config.h (the microcontroller's: no partial slabs, rays, table parts, view tables,

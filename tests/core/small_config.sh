@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The smallest configuration of core/vf_config.h, the microcontroller's (the Makefile's MCU_FEATURES, read from it):
 # tests/core/small_config.c built against it and against the whole core. The small core must refuse more than one ray, partial slabs, the
 # brute-force table builder and preint2 with VF_ERR_UNSUPPORTED (which the whole core renders or builds), and render every

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * tables_spec.h: what the table suites (test_classify_tables.c, test_lit_tables.c) share: a classification and
  * table scratch over one arena, docs/algorithm.md section 1's classification written again in double (the spec

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_arena.c: the caller-owned arena (core/arena.c): alignment, exact fit, running out without moving the
  * cursor, rewind, the high-water mark, fault injection, misaligned and NULL buffers, and the block size query.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_classify_tables.c: classification (core/classify.c), the point table, the brute-force and incremental
  * pre-integrated tables and the lut correction (core/tables.c) against docs/algorithm.md sections 2 and 4b,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_factor.c: the shear-warp factorisation (core/factor.c) against docs/algorithm.md section 3 in double.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_faults.c: SQLite-style fault loops over the renderer's memory (core/renderer.c with core/arena.c).
  *

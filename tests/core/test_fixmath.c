@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_fixmath.c: the core's integer arithmetic (core/fixmath.c) against libm, long double and exact 128-bit
  * arithmetic (tests/wide.h, itself checked here against __int128 where the target has it).

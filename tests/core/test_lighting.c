@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_lighting.c: lighting's parts in the core (docs/algorithm.md, section 7; core/normals.c, shade.c), each
  * against the section written out here in double: normal codes and their unit normals, gradients and magnitudes of

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_lit_tables.c: the front-weighted (lit) pre-integrated tables (core/preint.c, core/tables.c) against
  * docs/algorithm.md section 7, written here again in double: D_f = sum_k T_k C_k (1 - theta_k) per channel and

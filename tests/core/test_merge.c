@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_merge.c: the union of a slab row's runs (core/composite.h: vfi_merge_runs), which decides the pixels a slab
  * walks and, in the runs it records, where the next slab finds its fronts buffered: a pixel too many there would

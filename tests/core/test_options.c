@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_options.c: every renderer option (docs/algorithm.md section 4b: mode point / preint1 / preclass, lookup
  * nearest / bilinear, table bits 16 / 8, correction rebuild / lut, buffer slice / image, rays 1 / 2 / 4) composites

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_order2.c: preint2's table (core/preint2.c) and frames (core/composite_order2.c), docs/algorithm.md section 8.
  *   - the table against the double reference's brute-force build (host-sim/ref/ref_order2.c: the pieces of its

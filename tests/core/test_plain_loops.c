@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_plain_loops.c: the plain compositing loops (core/composite_order0.c, composite_order1.c: the fast paths of
  * point and preint1, unlit and lit) against the general loops, which every option takes: the same intermediate

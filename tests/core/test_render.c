@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_render.c: whole frames through the public API (core/renderer.c, composite.c, warp.c).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_render_api.c: the renderer's public API around a frame (core/renderer.c, composite.c, warp.c, status.c):
  * the order of calls (VF_ERR_STATE), every argument error, what a bad or changed transfer function does to the

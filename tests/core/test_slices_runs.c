@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_slices_runs.c: the window (core/slices.c: vfi_window_scalar), the three standard-order slice copies, and
  * the run-length encoding of visible cells (core/runs.c) against brute force.

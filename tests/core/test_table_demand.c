@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_table_demand.c: a frame composited on one thread whose 2D table is built as compositing reads it
  * (vf_frame_t.one_thread; core/preint.c, composite_order1.c): its intermediate image and picture equal

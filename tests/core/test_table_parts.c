@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_table_parts.c: a frame whose pre-integrated table is built in parts (vf_frame_t.table_parts,
  * vf_renderer_build_table_part; core/renderer.c, preint.c): in any number of parts, run in any order, the table and the

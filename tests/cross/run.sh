@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # make test-cross: the core's promise, bit-exact integer rendering, on the architectures users run it on.
 #
 #   1. the core's and the port layer's test suites (CROSS/tests/core/test_*, CROSS/tests/port/test_*) cross-built

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * fuzz.h: what the fuzz harnesses (tests/fuzz/fuzz_*.c) share. Each harness is one LLVMFuzzerTestOneInput that
  * writes its input to files in a private temporary directory and calls a public loader by path, as the programs

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_board.c: a board file, read as the viewer reads x.board (vfp_board_load). */
 #include "board/board.h"
 #include "fuzz.h"

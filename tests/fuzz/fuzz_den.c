@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_den.c: a VolPack .den volume, loaded as x.den. */
 #include "fuzz.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_metaimage.c: a MetaImage header and its data. The whole input is loaded as x.mha (a header whose
  * "ElementDataFile = LOCAL" data follows it in the same file); when the input holds a NUL byte, the part before it
  * is also loaded as x.mhd and the part after it is d.raw, the data file the seeds' detached headers name

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_nifti.c: a single-file NIfTI-1 volume, loaded as x.nii. */
 #include "fuzz.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_nifti_gz.c: a gzip'd NIfTI-1 volume, loaded as x.nii.gz. An input that starts with gzip's magic (1f 8b)
  * is written as it is, to fuzz the decompression (damaged streams, concatenated members, trailing bytes); any
  * other input is the uncompressed file, gzip'd here, to fuzz the header and the skips on the gzip path. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_nrrd.c: a NRRD file with its data attached (or naming a data file), loaded as volfix-sim loads x.nrrd. */
 #include "fuzz.h"
 

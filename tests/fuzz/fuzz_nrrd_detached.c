@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_nrrd_detached.c: a detached NRRD header and its data file. The input is the header (x.nhdr), a NUL byte,
  * then the data file's bytes (d.raw, which the seeds' headers name: "data file: d.raw"); a header holds no NUL, so
  * the split is unambiguous. Without a NUL the data file is empty. */

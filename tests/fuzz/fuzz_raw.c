@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_raw.c: raw voxels with the options volfix-sim takes for them. The input's first 7 bytes are the options,
  * the rest is the file:
  *   bytes 0..5  --dims X,Y,Z, three little-endian 16-bit numbers (0..65535: out-of-range sizes are errors too)

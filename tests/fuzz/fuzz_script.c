@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_script.c: an input script (input = script), opened from a file as the viewer opens x.script for a board
  * with four knobs and two buttons (as boards/host-headless.board), then from a string (vfp_script_load_string)
  * with no board (any of VFP_MAX_KNOBS knobs and VFP_MAX_BUTTONS buttons); the events are read to the end and must

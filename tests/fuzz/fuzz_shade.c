@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_shade.c: the core's lighting from arbitrary bytes, through its public API as the programs use it: normal
  * codes and gradient magnitudes of a small volume of any voxel type and spacing (vfi_normals_build, at renderer
  * creation), the per-frame shade table of any lights and material (vfi_shade_table, at each frame), and the lit

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* fuzz_tf.c: a transfer-function file (vfp_tf_load, as x.tf), then what the programs do with one: map it through
  * the windows of an 8-bit and a 16-bit volume (vfp_tf_to_core), move it as the level and width knobs do
  * (vfp_tf_move), and hand the points to the core, which must accept them (vf_table_point), and build the lit

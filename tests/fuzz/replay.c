@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* replay.c: main() for a fuzz harness built without libFuzzer (`make test`): feeds each file named on the command
  * line to LLVMFuzzerTestOneInput once, as the fuzzer would. tests/fuzz/replay.sh runs the seeds and the
  * regression inputs through every harness this way, in the normal and the sanitizer (SAN=1) builds. A finding

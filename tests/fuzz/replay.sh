@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The fuzz harnesses' regression check in make test: every file of tests/fuzz/seeds/ and tests/fuzz/regress/ (the
 # inputs that once found a bug) through every harness, built without libFuzzer as $BUILD/tests/fuzz/replay_NAME
 # (tests/fuzz/replay.c), so the normal and the sanitizer (make SAN=1) builds both check them. Every file goes

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # volfix-sim from the outside: usage and help, and for every kind of bad input an exit status of 2 and exactly
 # one line on stderr that names the file (and line) and says what was expected.
 cd "$(dirname "$0")/../.." || exit 2

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * frame_check.h: one frame of the fixed-point core against the double reference, as the accuracy suites
  * (test_accuracy.c, test_order2_accuracy.c) judge it: PSNR >= 50 dB and no channel of any pixel more than 2 of 255

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Lighting from the outside (docs/usage.md, "Lighting"): with --shade none every scene of tests/cross/scenes gives
 # the frame it gave before lighting came (the hashes below, of the commit before it), and so do those whose
 # transfer function is unlit by default; each lighting option bad in each way exits 2 with one line naming the

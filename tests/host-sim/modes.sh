@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # One small render per mode (point, preint1, preclass, preint2), the smoke test of make check: each writes its PNG
 # within a level of the double reference of the same mode (which the core shares no arithmetic with), and the four
 # modes give four different pictures.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Is second order better? tools/eval-orders.sh --quick (Marschner-Lobb 41^3, sharp, 30,20, 128x128) and what the
 # full evaluation (docs/study.md) supports there: at equal table resolution (64 a side) preint2 is closer than
 # preint1 to the smooth truth (Marschner-Lobb's own function), in PSNR and in xi; and against the trilinear truth,

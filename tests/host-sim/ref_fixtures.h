@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ref_fixtures.h: what the tests of the reference (host-sim/ref) build their cases from: tiny volumes from a
  * function of the voxel, a repeatable random sequence, a smooth transfer function, angles in binary angle units.

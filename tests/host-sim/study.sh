@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The quick precision study (volfix-sim study --quick -o out/study): every plot, strip and table the report
 # promises is there, and its numbers for the claims: pre-integration at least 6 dB closer to the truth than
 # point sampling inside Marschner-Lobb 41^3 with the sharp preset, and in the whole view with the errors both

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_accuracy.c: the fixed-point core against the double reference on the shared volumes: for engine,
  * brainsmall, neghip, headsq and cthead, at 512x512, five views, modes point and preint1, and two transfer

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_axis_change.c: crossing 45 degrees changes the principal axis, and with it the slices, shears and slab
  * length; the picture must not jump. For views a hundredth of a degree either side of the switch (and at 44, 45

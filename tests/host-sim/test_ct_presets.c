@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_ct_presets.c: the CT presets on uncalibrated CT (docs/defaults.md). cthead holds raw 12-bit values with
  * no calibration; an 8-bit export of it (each value scaled by 255 / its largest, as a viewer's export does) is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_lighting.c: lighting in the simulator (docs/algorithm.md section 7, and its "Lit truth"):
  *   - the acceptance figures: the fixed-point core against the double reference, lit, on engine, brainsmall,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_order2_accuracy.c: preint2 (docs/algorithm.md, section 8) of the fixed-point core against the double
  * reference on the shared volumes: engine, brainsmall, neghip, cthead and headsq, at 256x256, views 30,20, 45,0 and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_order2_frames.c: preint2 frames of the fixed-point core against the double reference (docs/algorithm.md,
  * section 8) on phantoms and made-up volumes, every option preint2 takes: no channel more than 1 of 255 apart.

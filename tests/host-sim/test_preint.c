@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_preint.c: pre-integration as a whole (issue 3): the two triangles of the table are the two directions
  * of a slab; a constant transfer function gives the closed form whatever the slab length, with either

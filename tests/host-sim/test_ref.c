@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_ref.c: the reference's window and tables, proved on their own terms (independently of the core):
  * hand rules, closed forms, and the pre-integrated table against direct numerical integration of the

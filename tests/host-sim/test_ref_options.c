@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_ref_options.c: the options of docs/algorithm.md section 4b in the reference, proved on their own terms:
  * bilinear lookup against hand values and a table that is bilinear in its indices, 8-bit tables against the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_ref_rays.c: the reference's rays per voxel column (docs/algorithm.md section 4b, ref_params_t.rays). R = 1
  * is the image of one ray per voxel column; R = 2^n puts the R = 1 rays at the pixels (R U, R V) and adds the rays

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_ref_view.c: the reference's factorisation, compositing and warp, proved on their own terms: volume
  * corners projected directly (the camera of docs/algorithm.md section 3, written out here again) and through

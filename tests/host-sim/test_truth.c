@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_truth.c: the ground-truth ray caster (host-sim/truth) against closed forms and against an independent
  * numerical integration of the emission-absorption integral (adaptive Simpson, nested for the optical depth,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_truth_smooth.c: the truth's smooth reconstructions (host-sim/truth/truth_smooth.c) reconstruct what they
  * say: Catmull-Rom interpolates the voxels and reproduces quadratics, the B-spline is the 1-4-1 blend at grid

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_window16.c: 16-bit data's default window keeps sparse bright structures (docs/defaults.md). Generated
  * volumes of soft tissue (values 1000..1999, spread through the volume) hold a thin wire of a given share of the

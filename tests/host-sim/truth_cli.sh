@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The ground truth from the outside: compare --against truth, render --truth, and the ray study (volfix-sim ray)
 # with and without gnuplot.
 cd "$(dirname "$0")/../.." || exit 2

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * gud_gadget.c: a GUD (Generic USB Display) device in user space, for make test-hw (tests/hw/README.md).
  *

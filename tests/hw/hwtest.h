@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * hwtest.h: what the programs of make test-hw share (tests/hw/README.md): "ok - NAME" / "not ok - NAME: why"
  * lines with names made at run time (the libgpiod version, the gadget's configuration), small file helpers for

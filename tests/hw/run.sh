@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # make test-hw: the GPIO and GUD display backends against real kernel interfaces, in a Linux VM (qemu, TCG).
 # See tests/hw/README.md for what runs and why. Everything it needs comes from Debian's archive into $BUILD/hw/:
 # Debian's own kernel (image, headers, kbuild, and the source for gpio-sim, built here out of tree), and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_gpio.c: the "gpiod" input backend (port/input/input_gpiod.c, gpio_decoder.c) against the kernel's GPIO
  * character device, with the lines simulated by gpio-sim inside the test VM (tests/hw/README.md). Built twice,

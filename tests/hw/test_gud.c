@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_gud.c: the "gud" display backend (port/display/display_gud.c, libusb) against a GUD device made in the same Linux
  * VM by gud_gadget.c over dummy_hcd and FunctionFS (tests/hw/README.md). For each gadget configuration it

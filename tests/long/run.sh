@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # make test-long: the viewer for 10,000 frames of knob-like changes (the view, the transfer function, presets
 # and modes, with rests that bring the full-quality thread in) on a display that drops its frames. Memory must
 # stay flat: the peak resident size at frame 10,000 within 1% of the peak at frame 100. Then a shorter session

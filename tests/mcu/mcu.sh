@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The core on a microcontroller: builds the Cortex-M4 firmware for the MPS2 AN386 board (make mcu-firmware,
 # boards/mps2-an386), runs it in qemu-system-arm, and requires the frame hash it prints to equal the host's
 # `volfix-sim render SCENE --hash`, for the default scene and for one with every option changed; the firmware

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # VolPack's own example image against volfix (tools/peers/volpack_check.sh, make volpack-check): VolPack renders its
 # example classification of brainsmall without depth cueing, volfix the same classification with lit preclass.
 # Checks: the two agree to >= 30 dB PSNR once aligned by whole pixels (the camera's known sub-voxel offset) and to

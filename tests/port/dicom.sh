@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # DICOM through GDCM (port/io/dicom.cpp), from the outside: series written at test time by tests/port/volumes.py
 # (pydicom) and compressed by GDCM's gdcmconv, loaded by volfix-sim and compared by frame hash with a NRRD holding
 # the same voxels. Covers 8- and 16-bit, signed with a rescale (CT in HU), unsorted file names, one multi-frame

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The evdev backend on emulated input devices: umockdev-run builds a testbed with the devices described in
 # tests/data/evdev/knobs.umockdev (two rotary-encoder overlays, one of them with two axes, and a gpio-keys node)
 # and replays the recorded event streams (evemu format, as `umockdev-record --evemu-events` writes them) on

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* lib_compare.c: a volume read by the formats' reference libraries, nifticlib (libnifti2: NIfTI-1 and -2) or teem's
  * nrrd, written back as a plain NRRD (raw, little-endian, the library's voxels as it stores them, with the library's
  * idea of where the axes point in the patient as LPS space directions), so that tests/port/libraries.sh can render

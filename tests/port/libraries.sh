@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # volfix's NIfTI and NRRD readers against the formats' reference libraries (docs/formats.md): every file of the
 # orientation phantom (tests/port/volumes.py: NRRD in LPS and RAS, raw, gzip, ascii and hex; NIfTI-1 sform and
 # qform, NIfTI-2) and the shared data's NRRD and NIfTI files, read by nifticlib (libnifti2) or teem (libteem) in

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # Orientation from every format (docs/formats.md): an asymmetric phantom (an L-shaped marker on the patient's left,
 # a sphere on the right) written by tests/port/volumes.py in NRRD (LPS and RAS spaces; raw, gzip, ascii, hex),
 # NIfTI-1 (sform, qform), NIfTI-2, MetaImage (TransformMatrix, AnatomicalOrientation alone; .mhd, .mha, zlib) and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_board.c: the board files in boards/ load with the values they say, and every kind of mistake in a board
  * file gives one line "FILE:LINE: what was expected" (port/board/board.c and board_check.c). Run from the repository's
  * top (run.sh does). */

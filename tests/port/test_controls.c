@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_controls.c: the viewer's input-to-view mapping (port/input/controls.c) and the overlay's font (overlay.c). */
 #include <math.h>
 #include <stdlib.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_display.c: finding a backend by name; fbdev through its seams (the kernel's fb ioctls cannot be made on a
  * regular file, so the format checks and the line_length copying run on screen information and memory the test

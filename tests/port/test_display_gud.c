@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_display_gud.c: the GUD protocol's pure parts (gud_protocol.h), byte for byte, without a device. The
  * conversation with a device is in test_display_gud_usb.c. */
 #include <string.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_display_gud_usb.c: the GUD backend against a scripted USB display, through the real libusb, with
  * umockdev standing in for the kernel: the test adds a USB device to a umockdev testbed (sysfs attributes and

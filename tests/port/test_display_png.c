@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_display_png.c: the PNG display: numbered frames, the pixels of each format, sub-rectangles, errors. */
 #include <stdio.h>
 #include <stdlib.h>

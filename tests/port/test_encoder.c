@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_encoder.c: the quadrature decoder and the button debouncer (port/input/encoder.c), edge by edge. */
 #include "check.h"
 #include "input/input.h"

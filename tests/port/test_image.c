@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_image.c: images in memory and the frame hash that test-cross and the mps2-an386 firmware compare. */
 #include <string.h>
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_input_evdev.c: the evdev backend (port/input/input_evdev.c).
  *
  * Run as it is, it feeds struct input_event records through pipes (the backend's open-from-fds seam): draining,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_input_gpiod.c: the GPIO backend's decoding path (port/input/gpio_decoder.c) with synthetic edges: two lines of an
  * encoder delivered out of order as libgpiod 1.x delivers them (one line's fd after the other), bouncing contacts,
  * and buttons that settle between reads. Compiled with or without libgpiod: the decoder needs none. With libgpiod,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_input_script.c: scripted input (port/input/input_script.c) and finding backends by name (port/input/input.c). */
 #include <stdio.h>
 #include <stdlib.h>

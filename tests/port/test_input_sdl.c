@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_input_sdl.c: the SDL keys backend (port/input/input_sdl.c) on SDL's dummy video driver, with key events pushed
  * into SDL's queue: boards/host-sdl.board's keys turn its knobs and press its buttons. Without SDL in the build,
  * only that the backend is reported as not compiled in. */

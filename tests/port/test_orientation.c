@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_orientation.c: the readers added for the formats users have (MetaImage, NIfTI-2, NRRD's ascii and hex
  * encodings) and the patient frame on load (NRRD space directions and spaces, oblique directions), named views and
  * the letters at a view's edges; on small files written at test time. tests/port/orientation.sh renders one phantom

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_preview.c: what the viewer's preview and its level and width knobs stand on: downsampled volumes
  * (port/io/volume_downsample.c), vfp_tf_move (tf.c), and renderers that take a new transfer function or window
  * without rebuilding more than that (render_mt.c). */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_tf.c: transfer-function files (port/io/tf.c) where tests/fuzz found or showed them wrong: scalars far outside
  * the window, lines longer than a buffer, NUL bytes; and how a file or preset says it is lit (the shade and
  * material lines, docs/usage.md). The file format's ordinary errors are in tests/host-sim/cli.sh. */

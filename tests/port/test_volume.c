@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_volume.c: the NRRD reader, format dispatch and their error messages, on small files written at test time. */
 #include <math.h>
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * test_volume_data.c: the readers on the real volumes in the shared data folder (see its README.md): every header
  * loads with the documented dims, type and spacing, and the same volume in different formats is the same voxels.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* test_volume_formats.c: NIfTI-1, VolPack .den, raw and phantom volumes, windows, and the option parsers. */
 #include <math.h>
 #include <stdio.h>

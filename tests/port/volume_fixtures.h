@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * volume_fixtures.h: small volume files written at test time into the tests' temporary directory (fixtures.h),
  * and the checks the volume tests share. Header-only so that each test program stays one file; every function is

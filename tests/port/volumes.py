@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: MIT
 """Test volumes written at test time: an asymmetric phantom in every format, and DICOM series of every kind.
 
   volumes.py orient DIR   the phantom (an L-shaped marker and a sphere, distinct along each axis) written in

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The viewer in an SDL window on a real X server (Xvfb): keys typed with xdotool turn the volume through the
 # SDL input backend, a screenshot of the screen shows the window holding exactly the picture volfix-sim
 # renders for the logged view, and Escape (the board's quit button) ends it.

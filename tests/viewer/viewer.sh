@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # The viewer (build/volfix) end to end on the headless board: scripted knob sessions write PNG frames and a log
 # whose every line gives the volfix-sim render options of its frame; every frame must equal volfix-sim's picture
 # pixel for pixel, previews (--downsample 2) and full-quality frames alike. Also: frames only when something

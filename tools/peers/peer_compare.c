@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * peer_compare.c: two renderings of one scene compared for `make bench-peers`: the silhouettes (pixels
  * brighter than a threshold against the black background) as intersection over union, for A as it is and

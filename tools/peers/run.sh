@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # make bench-peers: volfix and VolPack (Debian's libvolpack1-dev, VolPack 1.0b3) render the same four scenes in
 # one run: brainsmall and engine, each with a "ramp" and a "sparse" grey transfer function; 512x512, parallel
 # projection, FRAMES (90) frames over 180 degrees about the vertical axis, one thread (docs/peers.md).

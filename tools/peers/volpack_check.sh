@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MIT
 # make volpack-check: VolPack's own example image, rendered by VolPack and by volfix side by side.
 #
 # ../shared/data/brainsmall.volpack-check.ppm is VolPack's examples' image (classifyvolume.c, rendervolume.c):

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * volpack_peer.c: volfix's own client of VolPack's public API (Debian's libvolpack1-dev, VolPack 1.0b3), so
  * that `make bench-peers` can render volfix's benchmark scenes with VolPack in the same run and on the same
