@@ -366,10 +366,11 @@ test: deps
 	@sh tests/run.sh
 
 # make check: the edit-compile-test loop's tier, built and run in under a minute on two cores from a clean tree.
-# The core's unit tests, host-sim's but its two slow ones (test_accuracy renders every shared volume at five
-# views, test_ref_rays every ray count: 36 s and 21 s alone; make test runs them), and one small render per mode
+# The core's unit tests, host-sim's but its slow ones (the shared volumes rendered at several views, unlit, lit and
+# in order 2, and every ray count: 12 to 64 s each alone; make test runs them), and one small render per mode
 # against the reference (tests/host-sim/modes.sh). No packages installed, no port-layer or viewer tests.
-CHECK_SLOW := $(BUILD)/tests/host-sim/test_accuracy $(BUILD)/tests/host-sim/test_ref_rays
+CHECK_SLOW := $(addprefix $(BUILD)/tests/host-sim/,test_accuracy test_ref_rays test_lighting test_order2_accuracy \
+                test_preint)
 CHECK_BIN  := $(filter-out $(CHECK_SLOW),$(filter $(BUILD)/tests/core/% $(BUILD)/tests/host-sim/%,$(TEST_BIN)))
 check:
 	@$(MAKE) --no-print-directory $(JOBS) $(SIM) $(CHECK_BIN) $(CONFIG_MK)
