@@ -588,7 +588,7 @@ print-%:
 test-asan: DEPS_FOR = test
 test-asan: deps
 	@$(MAKE) --no-print-directory $(JOBS) SAN=1 BUILD=$(BUILD)-asan all
-	@SAN=1 BUILD=$(BUILD)-asan sh tests/run.sh
+	@SAN=1 BUILD=$(BUILD)-asan LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 sh tests/run.sh
 
 test-long: DEPS_FOR = test
 test-long: deps
