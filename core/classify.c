@@ -97,7 +97,7 @@ vf_status_t vfi_classify(vfi_classify_t *cls, const vf_tf_t *tf)
     return VF_OK;
 }
 
-/* Channel 0..3 (r, g, b, a) of the transfer function at entry i's scalar, as Q.30 (unorm16 65535 -> 2^30).
+/* Channel 0..3 (r, g, b, a) of the transfer function at entry i's scalar, as Q.30 (unorm16 65535 becomes 2^30).
  * The scalar i * 65280 / (N - 1) (Q8.8) is kept as the exact fraction num / (N - 1). */
 static uint64_t tf_value_q30(const vf_tf_t *tf, uint32_t entry, uint32_t n, int channel)
 {

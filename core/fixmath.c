@@ -233,7 +233,7 @@ int64_t vfi_ratio_q32(int64_t num, int64_t den)
 
 int64_t vfi_mul_shift_round(int64_t a, int64_t b, unsigned shift)
 {
-    /* 64 x 64 -> 128 bits from 32-bit halves, on magnitudes. */
+    /* The 128-bit product of two 64-bit magnitudes, from their 32-bit halves. */
     int negative = (a < 0) != (b < 0);
     uint64_t x = a < 0 ? (uint64_t)0 - (uint64_t)a : (uint64_t)a;
     uint64_t y = b < 0 ? (uint64_t)0 - (uint64_t)b : (uint64_t)b;

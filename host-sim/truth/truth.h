@@ -107,11 +107,14 @@ typedef struct truth_walk {
     int piece[3];        /* the cell of the piece truth_walk_next returned last */
     int cell[3], step[3], dims[3], done;
     double t_next[3], t, t_out;
-    const double *o, *d;
+    double o[3], d[3]; /* the ray: origin + t dir */
 } truth_walk_t;
 
 void truth_walk_start(truth_walk_t *w, const int dims[3], const double origin[3], const double dir[3], double t_in,
                       double t_out);
+/* The walk of the ray through final pixel (px, py), with *acc emptied; 0 when the ray misses the volume. */
+int truth_walk_pixel(truth_walk_t *w, const truth_camera_t *cam, const int dims[3], double px, double py,
+                     truth_acc_t *acc);
 /* The next piece [*t0, *t1] of the ray, in cell w->piece; 0 once the ray has left the volume. */
 int truth_walk_next(truth_walk_t *w, double *t0, double *t1);
 

@@ -109,23 +109,32 @@ void truth_trace_lit(const ref_volume_t *vol, const truth_tf_t *tf, const truth_
         truth_trace_field(tf, cam, opts, px, py, acc); /* unlit: truth_render_lit refuses a field with lighting */
         return;
     }
+    truth_walk_t w;
+    if (!truth_walk_pixel(&w, cam, vol->dims, px, py, acc))
+        return;
+    double t0, t1;
+    while (acc->T > 1.0 - TRUTH_STOP_OPACITY && truth_walk_next(&w, &t0, &t1))
+        cell_segment(vol, tf, opts, lit, w.piece, w.o, w.d, t0, t1, acc);
+}
+
+int truth_walk_pixel(truth_walk_t *w, const truth_camera_t *cam, const int dims[3], double px, double py,
+                     truth_acc_t *acc)
+{
     acc->T = 1;
     acc->C[0] = acc->C[1] = acc->C[2] = 0;
     double o[3], d[3], t_in, t_out;
     if (!truth_camera_ray(cam, px, py, o, d, &t_in, &t_out))
-        return;
-    truth_walk_t w;
-    truth_walk_start(&w, vol->dims, o, d, t_in, t_out);
-    double t0, t1;
-    while (acc->T > 1.0 - TRUTH_STOP_OPACITY && truth_walk_next(&w, &t0, &t1))
-        cell_segment(vol, tf, opts, lit, w.piece, o, d, t0, t1, acc);
+        return 0;
+    truth_walk_start(w, dims, o, d, t_in, t_out);
+    return 1;
 }
 
 void truth_walk_start(truth_walk_t *w, const int dims[3], const double origin[3], const double dir[3], double t_in,
                       double t_out)
 {
-    w->o = origin, w->d = dir, w->t = t_in, w->t_out = t_out, w->done = 0;
+    w->t = t_in, w->t_out = t_out, w->done = 0;
     for (int a = 0; a < 3; a++) {
+        w->o[a] = origin[a], w->d[a] = dir[a];
         const double p = origin[a] + t_in * dir[a];
         w->dims[a] = dims[a];
         w->step[a] = dir[a] > 0 ? 1 : dir[a] < 0 ? -1 : 0;

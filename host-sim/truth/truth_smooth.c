@@ -274,17 +274,13 @@ void truth_trace_field(const truth_tf_t *tf, const truth_camera_t *cam, const tr
 {
     const truth_field_t *f = opts->field;
     const ref_volume_t *vol = f->vol;
-    acc->T = 1;
-    acc->C[0] = acc->C[1] = acc->C[2] = 0;
-    double o[3], d[3], t_in, t_out;
-    if (!truth_camera_ray(cam, px, py, o, d, &t_in, &t_out))
-        return;
     /* the trilinear walk's cells: they give the cubic filters their bounds and every filter its pace */
     truth_walk_t w;
-    truth_walk_start(&w, vol->dims, o, d, t_in, t_out);
+    if (!truth_walk_pixel(&w, cam, vol->dims, px, py, acc))
+        return;
     double t0, t1;
     while (acc->T > 1.0 - TRUTH_STOP_OPACITY && truth_walk_next(&w, &t0, &t1))
-        cell_smooth(f, tf, opts, w.piece, o, d, t0, t1, acc);
+        cell_smooth(f, tf, opts, w.piece, w.o, w.d, t0, t1, acc);
 }
 
 /* The tolerance on the scalar's distance from its chord where the scalar spans [lo, hi] (truth_ray.c's rule). */

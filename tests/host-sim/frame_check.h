@@ -15,6 +15,18 @@
 #include "io/pngio.h"
 #include "scene.h"
 
+/* Renders o's scene with the core into *img (the scene in *s, its factoring in *f); on failure prints "# why" and
+ * returns -1, else 0. */
+static inline int frame_core(const sim_opts_t *o, sim_scene_t *s, vf_image_t *img, vf_factor_t *f)
+{
+    char err[VFP_ERR_LEN];
+    if (sim_scene_load(s, o, err, sizeof err) || sim_render_core(s, img, f, err, sizeof err)) {
+        printf("# %s\n", err);
+        return -1;
+    }
+    return 0;
+}
+
 /* Renders o's scene with the core and the reference, compares them into *d and prints the case's line, "ok - NAME:
  * PSNR ..." or "not ok - NAME: ...". Returns 1 when the frames agree, 0 when they do not, -1 when one could not be
  * rendered (d is then untouched). */

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 
 #include "check.h"
+#include "frame_check.h"
 #include "io/pngio.h"
 #include "scene.h"
 
@@ -21,7 +22,6 @@ typedef struct shape {
 
 static int measure(const char *volume, const char *preset, int mode, double az, double el, shape_t *sh)
 {
-    char err[VFP_ERR_LEN];
     /* unlit: the shape of what a view shows, not its shading (the CT presets are lit by default) */
     char *argv[] = {(char *)volume, "--preset", (char *)preset, "--size", "256x256", "--threads", "2", "--shade", "none"};
     sim_opts_t o;
@@ -32,10 +32,8 @@ static int measure(const char *volume, const char *preset, int mode, double az, 
     sim_scene_t s;
     vf_image_t img;
     vf_factor_t f;
-    if (sim_scene_load(&s, &o, err, sizeof err) || sim_render_core(&s, &img, &f, err, sizeof err)) {
-        printf("# %s\n", err);
+    if (frame_core(&o, &s, &img, &f))
         return -1;
-    }
     uint8_t *rgb = malloc((size_t)img.width * img.height * 3);
     vfp_image_to_rgb(&img, rgb);
     double sum = 0, sx = 0, sy = 0;

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "frame_check.h"
 #include "io/pngio.h"
 #include "scene.h"
 
@@ -24,7 +25,6 @@ typedef struct shares {
 
 static int measure(const char *volume, char *const *extra, int nextra, const char *preset, shares_t *sh)
 {
-    char err[VFP_ERR_LEN];
     char *argv[16] = {(char *)volume, "--preset", (char *)preset, "--view", "180,90", "--size", "256x256",
                       "--threads", "2"};
     int argc = 9;
@@ -36,10 +36,8 @@ static int measure(const char *volume, char *const *extra, int nextra, const cha
     sim_scene_t s;
     vf_image_t img;
     vf_factor_t f;
-    if (sim_scene_load(&s, &o, err, sizeof err) || sim_render_core(&s, &img, &f, err, sizeof err)) {
-        printf("# %s\n", err);
+    if (frame_core(&o, &s, &img, &f))
         return -1;
-    }
     uint8_t *rgb = malloc((size_t)img.width * img.height * 3);
     vfp_image_to_rgb(&img, rgb);
     long skin = 0, bone = 0, head = 0;

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "frame_check.h"
 #include "io/pngio.h"
 #include "scene.h"
 
@@ -56,7 +57,6 @@ static void write_volume(uint16_t *v, long wire, int value, int z)
 /* Renders path (window: NULL for the default) into rgb; the window used in *used. */
 static int render(const char *window, uint8_t *rgb, vf_window_t *used)
 {
-    char err[VFP_ERR_LEN];
     char *argv[16] = {path, "--dims", "96,96,96", "--type", "uint16", "--view", "0,0", "--size", "128x128",
                       "--threads", "2"};
     int argc = 11;
@@ -70,10 +70,8 @@ static int render(const char *window, uint8_t *rgb, vf_window_t *used)
     sim_scene_t s;
     vf_image_t img;
     vf_factor_t f;
-    if (sim_scene_load(&s, &o, err, sizeof err) || sim_render_core(&s, &img, &f, err, sizeof err)) {
-        printf("# %s\n", err);
+    if (frame_core(&o, &s, &img, &f))
         return -1;
-    }
     vfp_image_to_rgb(&img, rgb);
     *used = s.window;
     sim_image_free(&img);
