@@ -381,10 +381,15 @@ static int32_t load_i32(const unsigned char *p, int big)
     return v;
 }
 
-static int64_t load_i64(const unsigned char *p, int big)
+static uint64_t load_u64(const unsigned char *p, int big)
 {
     uint64_t lo = vfpi_load32(p + (big ? 4 : 0), big), hi = vfpi_load32(p + (big ? 0 : 4), big);
-    uint64_t u = hi << 32 | lo;
+    return hi << 32 | lo;
+}
+
+static int64_t load_i64(const unsigned char *p, int big)
+{
+    uint64_t u = load_u64(p, big);
     int64_t v;
     memcpy(&v, &u, sizeof v);
     return v;
@@ -392,8 +397,7 @@ static int64_t load_i64(const unsigned char *p, int big)
 
 static double load_f64(const unsigned char *p, int big)
 {
-    uint64_t lo = vfpi_load32(p + (big ? 4 : 0), big), hi = vfpi_load32(p + (big ? 0 : 4), big);
-    uint64_t u = hi << 32 | lo;
+    uint64_t u = load_u64(p, big);
     double f;
     memcpy(&f, &u, sizeof f);
     return f;
