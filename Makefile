@@ -370,7 +370,7 @@ test: deps
 # in order 2, and every ray count: 12 to 64 s each alone; make test runs them), and one small render per mode
 # against the reference (tests/host-sim/modes.sh). No packages installed, no port-layer or viewer tests.
 CHECK_SLOW := $(addprefix $(BUILD)/tests/host-sim/,test_accuracy test_ref_rays test_lighting test_order2_accuracy \
-                test_preint)
+                test_preint test_anisotropic)
 CHECK_BIN  := $(filter-out $(CHECK_SLOW),$(filter $(BUILD)/tests/core/% $(BUILD)/tests/host-sim/%,$(TEST_BIN)))
 check:
 	@$(MAKE) --no-print-directory $(JOBS) $(SIM) $(CHECK_BIN) $(CONFIG_MK)

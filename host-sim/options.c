@@ -40,8 +40,9 @@ const char sim_scene_help[] =
     "                       in a 16-bit table of up to 512 entries, not preclass, each view into a second\n"
     "                       table, else each segment)\n"
     "  --buffer B           slice (default: two slice-sized buffers) or image (one image-row buffer)\n"
-    "  --rays N             rays per voxel column along each axis: 1 (default), 2, 4, 8 or 16 (an intermediate\n"
-    "                       image of N x N pixels per voxel, N^2 times the memory); the truth ignores it\n"
+    "  --rays N             rays per voxel column along each axis: 1, 2, 4, 8 or 16 (an intermediate image of\n"
+    "                       N x N pixels per voxel, N^2 times the memory); the truth ignores it. Default: 1,\n"
+    "                       2 for an anisotropic volume (one spacing at least twice the smallest)\n"
     "  --partial-slabs      where a ray crosses a side face of the volume between two slices, composite the part\n"
     "                       of the slab inside it (default: the whole slab or nothing)\n"
     "  --threads N          threads for the table, compositing and warping, 1..16 (default 1)\n"
@@ -197,6 +198,7 @@ vfp_status_t sim_parse(sim_opts_t *o, int argc, char **argv, unsigned groups, co
             if (!vfp_parse_integer(v, 1, 16, &n) || (n & (n - 1)))
                 return bad(a, v, "1, 2, 4, 8 or 16");
             o->params.rays = (uint32_t)n;
+            o->rays_given = 1;
         } else if ((groups & SIM_OPT_SCENE) && strcmp(a, "--view") == 0) {
             double d[3] = {0, 0, 0};
             if (!v || vfp_view_named(v, d) != VFP_OK) {

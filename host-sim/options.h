@@ -15,6 +15,7 @@ typedef struct sim_opts {
     const char *window;        /* --window LO,HI in data units */
     double tf_shift, tf_scale; /* --tf-move SHIFT,SCALE (vfp_tf_move; default 0,1) */
     vf_params_t params;        /* --mode --table-size */
+    int rays_given;            /* --rays given: the spacing does not choose it (render/sampling.h) */
     vfp_lighting_opts_t lighting; /* --shade --light --material --gradient-opacity --normal-bits --shade-lookup */
     double azimuth, elevation, roll; /* --view AZ,EL[,ROLL] degrees */
     double zoom;               /* --zoom */

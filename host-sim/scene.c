@@ -52,6 +52,8 @@ vfp_status_t sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size
         vfp_tf_move(&s->tf, &s->vol, s->window, o->tf_shift, o->tf_scale);
     s->npoints = vfp_tf_to_core(&s->tf, &s->vol, s->window, s->points);
     s->params = o->params;
+    s->sampling = vfp_sampling_choose(&s->vol, o->rays_given ? o->params.rays : 0);
+    s->params.rays = s->sampling.rays;
     /* with partial slabs the transfer function's own shading gives way (lighting does not go with them, and
      * options that ask for it were refused by sim_parse) */
     vfp_lighting_resolve(&o->lighting, o->params.partial_slabs ? NULL : &s->tf, &s->params, &s->lighting);
@@ -324,14 +326,17 @@ void sim_scene_describe(const sim_scene_t *s, char *text, size_t len)
                  vf_lookup_name(p->lookup), vf_correction_name(p->correction), vf_buffer_name(p->buffer));
     if (p->mode == VF_MODE_PREINT2) /* its 3D table's size, always: the study has not settled its default */
         snprintf(options + strlen(options), sizeof options - strlen(options), " (table2 %u^3)", p->table2_size);
-    char rays[32] = "";
+    char rays[48] = "", aniso[96];
     if (s->params.rays > 1)
         snprintf(rays, sizeof rays, " rays %u", s->params.rays);
+    if (s->params.partial_slabs)
+        snprintf(rays + strlen(rays), sizeof rays - strlen(rays), " partial slabs");
+    vfp_sampling_text(&s->sampling, aniso, sizeof aniso);
     char lit[192];
     vfp_lighting_describe(p, &s->lighting, lit, sizeof lit);
     double lo, hi; /* in data units, as --window takes them */
     vfp_window_data(&s->vol, s->window, &lo, &hi);
-    snprintf(text, len, "%s %s%s%s %ux%u view %s zoom %g %s window %.10g,%.10g%s", base ? base + 1 : s->vol.name,
+    snprintf(text, len, "%s %s%s%s %ux%u view %s zoom %g %s window %.10g,%.10g%s%s", base ? base + 1 : s->vol.name,
              vf_mode_name(p->mode), options, rays, s->width, s->height, view, s->view.zoom_q16 / 65536.0, s->tf.name,
-             lo, hi, lit);
+             lo, hi, lit, aniso);
 }

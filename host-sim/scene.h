@@ -10,6 +10,7 @@
 #include "options.h"
 #include "ref/ref.h"
 #include "render/render_mt.h"
+#include "render/sampling.h"
 #include "io/tf.h"
 #include "io/volume.h"
 
@@ -20,6 +21,7 @@ typedef struct sim_scene {
     vf_tf_point_t points[VF_MAX_TF_POINTS]; /* the transfer function as the core gets it */
     uint32_t npoints;
     vf_params_t params;
+    vfp_sampling_t sampling; /* the rays the volume's spacing asks for (applied unless --rays was given) */
     vf_lighting_t lighting; /* section 7, for params.lighting: the options' and the transfer function's */
     /* The precision study's knobs of the reference's lighting (ref.h, ref_lighting_t; 0: section 7 as written) */
     int ref_exact_normals, ref_shade_bits, ref_lit_table_bits;

@@ -147,6 +147,10 @@ static vfp_status_t log_frame(loop_t *L, int full, double ms, double present_ms,
             s->window.hi * slope + inter, L->frame.width, L->frame.height, format_name(L->frame.format));
     if (!full && s->preview_factor > 1)
         fprintf(v->log, " --downsample %d", s->preview_factor);
+    /* the rays this frame had, whenever volfix-sim's own default could differ */
+    unsigned rays = full ? s->sampling.rays : 1;
+    if (rays > 1 || s->sampling.anisotropy >= VFP_ANISOTROPY_THRESHOLD)
+        fprintf(v->log, " --rays %u", rays);
     fputc('\n', v->log);
     if (fflush(v->log) != 0 || ferror(v->log)) {
         fprintf(stderr, "volfix: %s: cannot write the log: %s\n", v->log_path, strerror(errno ? errno : EIO));
@@ -472,9 +476,11 @@ vfp_status_t viewer_loop(viewer_t *v)
         return VFP_ERR;
     }
     const uint32_t *d = v->scene.full.core.dims;
-    printf("volfix: %s (%ux%ux%u) on %s: display %s %ux%u, input %s, %d threads, preview %s\n", v->volume_arg, d[0],
-           d[1], d[2], v->board.name, v->board.display, L.display.width, L.display.height,
-           v->script ? "script" : v->board.input, v->scene.threads, v->scene.preview_factor > 1 ? "on" : "off");
+    char aniso[96];
+    vfp_sampling_text(&v->scene.sampling, aniso, sizeof aniso);
+    printf("volfix: %s (%ux%ux%u) on %s: display %s %ux%u, input %s, %d threads, preview %s%s\n", v->volume_arg,
+           d[0], d[1], d[2], v->board.name, v->board.display, L.display.width, L.display.height,
+           v->script ? "script" : v->board.input, v->scene.threads, v->scene.preview_factor > 1 ? "on" : "off", aniso);
     fflush(stdout);
     atomic_store(&L.worker.latest, L.gen);
     uint64_t idle_ns = (uint64_t)v->board.idle_ms * 1000000u;

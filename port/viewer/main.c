@@ -45,6 +45,8 @@ static const char usage[] =
     "  --preview N          while a knob turns, render a copy N times smaller a side (default 2 for volumes\n"
     "                       of 64^3 voxels or more, else 1: off)\n"
     "  --idle-ms MS         full quality once the knobs rest this long (default: the board's, else 300)\n"
+    "  --rays N             rays per voxel column along each axis in full-quality frames: 1, 2 or 4 (default\n"
+    "                       1, and 2 for an anisotropic volume: one spacing at least twice the smallest)\n"
     "  --threads N          rendering threads, 1..16 (default: the board's, else the processors online)\n"
     "  --overlay            show the frame-time overlay from the start (the overlay button toggles it)\n"
     "  --log FILE           a line per frame shown: quality, time, input latency, memory, and the volfix-sim\n"
@@ -90,7 +92,7 @@ typedef struct options {
     vf_mode_t mode;
     double view[3], zoom;
     uint32_t width, height;
-    int preview, idle_ms, threads, overlay, frames;
+    int preview, idle_ms, threads, overlay, frames, rays;
     vfp_load_opts_t load;
     vfp_lighting_opts_t lighting;
 } options_t;
@@ -170,6 +172,9 @@ static vfp_status_t parse(options_t *o, int argc, char **argv)
         } else if (!strcmp(a, "--idle-ms")) {
             if (parse_int(v, 0, 60000, &o->idle_ms))
                 return bad(a, v, "milliseconds from 0 to 60000");
+        } else if (!strcmp(a, "--rays")) {
+            if (parse_int(v, 1, 4, &o->rays) || (o->rays & (o->rays - 1)))
+                return bad(a, v, "1, 2 or 4");
         } else if (!strcmp(a, "--threads")) {
             if (parse_int(v, 1, VFP_MAX_THREADS, &o->threads))
                 return bad(a, v, "an integer from 1 to 16");
@@ -312,6 +317,7 @@ static vfp_status_t setup(viewer_t *v, const options_t *o, char *err, size_t err
     if (load_tfs(s, o, &first, err, errlen))
         return VFP_ERR;
     vf_params_default(&s->params);
+    s->sampling = vfp_sampling_choose(&s->full, (uint32_t)o->rays);
     for (int k = 0; k < s->tf_count; k++) { /* each transfer function's lighting; renderers are made to suit */
         vf_params_t p = s->params;
         vfp_lighting_resolve(&o->lighting, &s->tfs[k], &p, &s->lighting[k]);

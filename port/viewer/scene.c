@@ -45,6 +45,8 @@ vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, con
         vf_params_t params = scene->params;
         params.mode = c->mode;
         params.lighting = lit != 0;
+        if (volume == &scene->full) /* previews stay at one ray: they are for speed */
+            params.rays = scene->sampling.rays;
         /* preint2's 3D table takes about 22 ms to rebuild at 64^3 (docs/performance.md), too long to wait for at
          * every turn of a knob: it is built once for d0 and corrected through the opacity lookup */
         if (params.mode == VF_MODE_PREINT2)

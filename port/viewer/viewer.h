@@ -26,6 +26,7 @@
 #include "display/display.h"
 #include "input/input.h"
 #include "render/render_mt.h"
+#include "render/sampling.h"
 #include "io/lighting_opts.h"
 #include "io/tf.h"
 #include "io/volume.h"
@@ -43,6 +44,7 @@ typedef struct viewer_scene {
     char tf_args[VIEWER_MAX_TFS][VFP_PATH_LEN + 16]; /* how volfix-sim names each: "--preset ramp", "--tf FILE" */
     int tf_count;
     vf_params_t params;      /* the mode comes from the controls, lighting from the transfer function */
+    vfp_sampling_t sampling; /* rays for the full volume's frames (render/sampling.h); previews take one */
     /* How each transfer function is lit (the lighting options and its own shade and material lines): frames of
      * transfer function k are lit when lit[k], with lighting[k] */
     int lit[VIEWER_MAX_TFS];

@@ -91,6 +91,29 @@ else
 fi
 frames_match "idle frames equal volfix-sim" phantom:marschner-lobb:64 "$tmp/idle" "$tmp/idle.log"
 
+# 2b. An anisotropic volume (headsq, spacing 3.2, 3.2, 1.5): full-quality frames take 2 rays per voxel column,
+# previews one, and the first line says so; each frame's log line still gives volfix-sim's same picture.
+if [ -f "$data/headsq.nhdr" ]; then
+    run_viewer aniso --board "$board" "$data/headsq.nhdr" --script "$tmp/idle.script" --device "$tmp/aniso" \
+        --log "$tmp/aniso.log"
+    if [ $status -eq 0 ] && grep -q 'anisotropic spacing 2.13x: rays 2 by default' "$tmp/aniso.out" &&
+        sed -n 1p "$tmp/aniso.log" | grep -q ' preview .*--rays 1$' &&
+        sed -n 2p "$tmp/aniso.log" | grep -q ' full .*--rays 2$'; then
+        ok "headsq: full quality at 2 rays, previews at 1, said at start"
+    else
+        fail "headsq: full quality at 2 rays, previews at 1, said at start" \
+            "status $status: $(cat "$tmp/aniso.out" "$tmp/aniso.log")"
+    fi
+    frames_match "headsq frames equal volfix-sim" "$data/headsq.nhdr" "$tmp/aniso" "$tmp/aniso.log"
+    run_viewer aniso1 --board "$board" "$data/headsq.nhdr" --rays 1 --script "$tmp/idle.script" \
+        --device "$tmp/aniso1" --log "$tmp/aniso1.log"
+    sed -n 2p "$tmp/aniso1.log" | grep -q ' full .*--rays 1$' && ! grep -q anisotropic "$tmp/aniso1.out" &&
+        ok "headsq with --rays 1: full quality at one ray" ||
+        fail "headsq with --rays 1: full quality at one ray" "$(cat "$tmp/aniso1.out" "$tmp/aniso1.log")"
+else
+    fail "headsq session" "no headsq.nhdr in VOLFIX_DATA='$data'"
+fi
+
 # 3. The transfer function moving, presets and modes cycling (the latency session), on a phantom.
 run_viewer level --board "$board" phantom:shepp-logan:64 --script tests/viewer/level.script --device "$tmp/level" \
     --log "$tmp/level.log"
@@ -197,6 +220,7 @@ expect_error "missing script" "nope.script" --board "$board" phantom:sphere:8 --
 expect_error "missing volume" "nope.nhdr" --board "$board" "$tmp/nope.nhdr" --script "$tmp/idle.script" --device "$tmp/x"
 expect_error "unknown preset" "--preset bones: expected ramp, sharp" --board "$board" phantom:sphere:8 --preset bones --script "$tmp/idle.script"
 expect_error "bad preview" "--preview 0: expected an integer from 1 (off) to 8" --board "$board" phantom:sphere:8 --preview 0
+expect_error "bad rays" "--rays 3: expected 1, 2 or 4" --board "$board" phantom:sphere:8 --rays 3
 expect_error "unknown option" "unknown option or extra argument '--colour'" --board "$board" phantom:sphere:8 --colour red
 touch "$tmp/file"
 expect_error "frames directory is a file" "$tmp/file" --board "$board" phantom:sphere:8 --script "$tmp/idle.script" --device "$tmp/file"
