@@ -30,8 +30,10 @@ int sim_cmd_render(int argc, char **argv)
     if (status)
         return vfp_exit_status(status);
     char err[VFP_ERR_LEN], about[512];
-    if (o.truth)
-        scene.params.rays = 1; /* the truth has no intermediate image: --rays does not apply */
+    if (o.truth) { /* the truth has no intermediate image: --rays does not apply, nor the spacing's default */
+        scene.params.rays = 1;
+        scene.sampling.rays_given = 1;
+    }
     vf_image_t img;
     status = o.reference ? sim_render_reference(&scene, NULL, &img, err, sizeof err)
              : o.truth   ? sim_render_truth(&scene, &img, err, sizeof err)

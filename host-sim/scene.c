@@ -52,11 +52,11 @@ vfp_status_t sim_scene_load(sim_scene_t *s, const sim_opts_t *o, char *err, size
         vfp_tf_move(&s->tf, &s->vol, s->window, o->tf_shift, o->tf_scale);
     s->npoints = vfp_tf_to_core(&s->tf, &s->vol, s->window, s->points);
     s->params = o->params;
-    s->sampling = vfp_sampling_choose(&s->vol, o->rays_given ? o->params.rays : 0);
-    s->params.rays = s->sampling.rays;
     /* with partial slabs the transfer function's own shading gives way (lighting does not go with them, and
      * options that ask for it were refused by sim_parse) */
     vfp_lighting_resolve(&o->lighting, o->params.partial_slabs ? NULL : &s->tf, &s->params, &s->lighting);
+    s->sampling = vfp_sampling_choose(&s->vol, o->rays_given ? o->params.rays : 0, s->params.lighting);
+    s->params.rays = s->sampling.rays;
     s->view = sim_view(o->azimuth, o->elevation, o->roll, o->zoom);
     s->width = o->width;
     s->height = o->height;

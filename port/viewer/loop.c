@@ -148,8 +148,10 @@ static vfp_status_t log_frame(loop_t *L, int full, double ms, double present_ms,
     if (!full && s->preview_factor > 1)
         fprintf(v->log, " --downsample %d", s->preview_factor);
     /* the rays this frame had, whenever volfix-sim's own default could differ */
-    unsigned rays = full ? s->sampling.rays : 1;
-    if (rays > 1 || s->sampling.anisotropy >= VFP_ANISOTROPY_THRESHOLD)
+    const vfp_volume_t *vol = !full && s->preview_factor > 1 ? &s->preview : &s->full;
+    vfp_sampling_t sampling = vfp_sampling_choose(&s->full, s->rays_given, p.lighting);
+    uint32_t rays = viewer_rays(s, vol, p.lighting);
+    if (rays > 1 || sampling.anisotropy >= VFP_ANISOTROPY_THRESHOLD)
         fprintf(v->log, " --rays %u", rays);
     fputc('\n', v->log);
     if (fflush(v->log) != 0 || ferror(v->log)) {
@@ -476,8 +478,11 @@ vfp_status_t viewer_loop(viewer_t *v)
         return VFP_ERR;
     }
     const uint32_t *d = v->scene.full.core.dims;
-    char aniso[96];
-    vfp_sampling_text(&v->scene.sampling, aniso, sizeof aniso);
+    char aniso[96] = ""; /* lit frames keep one ray unless --rays says otherwise (render/sampling.h) */
+    vfp_sampling_t sampling = vfp_sampling_choose(&v->scene.full, v->scene.rays_given, 0);
+    if (sampling.anisotropy >= VFP_ANISOTROPY_THRESHOLD && !sampling.rays_given)
+        snprintf(aniso, sizeof aniso, "; anisotropic spacing %.2fx: unlit full-quality frames at %u rays a side",
+                 sampling.anisotropy, sampling.rays);
     printf("volfix: %s (%ux%ux%u) on %s: display %s %ux%u, input %s, %d threads, preview %s%s\n", v->volume_arg,
            d[0], d[1], d[2], v->board.name, v->board.display, L.display.width, L.display.height,
            v->script ? "script" : v->board.input, v->scene.threads, v->scene.preview_factor > 1 ? "on" : "off", aniso);

@@ -317,7 +317,7 @@ static vfp_status_t setup(viewer_t *v, const options_t *o, char *err, size_t err
     if (load_tfs(s, o, &first, err, errlen))
         return VFP_ERR;
     vf_params_default(&s->params);
-    s->sampling = vfp_sampling_choose(&s->full, (uint32_t)o->rays);
+    s->rays_given = o->rays > 0 ? (uint32_t)o->rays : 0;
     for (int k = 0; k < s->tf_count; k++) { /* each transfer function's lighting; renderers are made to suit */
         vf_params_t p = s->params;
         vfp_lighting_resolve(&o->lighting, &s->tfs[k], &p, &s->lighting[k]);

@@ -12,6 +12,12 @@ void viewer_renderer_close(viewer_renderer_t *vr)
     vr->open = 0;
 }
 
+uint32_t viewer_rays(const viewer_scene_t *scene, const vfp_volume_t *volume, int lit)
+{
+    /* previews stay at one ray: they are for speed */
+    return volume == &scene->full ? vfp_sampling_choose(volume, scene->rays_given, lit).rays : 1;
+}
+
 int viewer_lighting(const viewer_scene_t *scene, const vfp_controls_t *c, vf_lighting_t *l)
 {
     *l = scene->lighting[c->preset];
@@ -45,8 +51,7 @@ vfp_status_t viewer_sync(viewer_renderer_t *vr, const viewer_scene_t *scene, con
         vf_params_t params = scene->params;
         params.mode = c->mode;
         params.lighting = lit != 0;
-        if (volume == &scene->full) /* previews stay at one ray: they are for speed */
-            params.rays = scene->sampling.rays;
+        params.rays = viewer_rays(scene, volume, lit);
         /* preint2's 3D table takes about 22 ms to rebuild at 64^3 (docs/performance.md), too long to wait for at
          * every turn of a knob: it is built once for d0 and corrected through the opacity lookup */
         if (params.mode == VF_MODE_PREINT2)

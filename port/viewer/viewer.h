@@ -44,13 +44,18 @@ typedef struct viewer_scene {
     char tf_args[VIEWER_MAX_TFS][VFP_PATH_LEN + 16]; /* how volfix-sim names each: "--preset ramp", "--tf FILE" */
     int tf_count;
     vf_params_t params;      /* the mode comes from the controls, lighting from the transfer function */
-    vfp_sampling_t sampling; /* rays for the full volume's frames (render/sampling.h); previews take one */
+    uint32_t rays_given;     /* --rays, 0 when not given: the full volume's frames then take the spacing's
+                              * (render/sampling.h); previews take one */
     /* How each transfer function is lit (the lighting options and its own shade and material lines): frames of
      * transfer function k are lit when lit[k], with lighting[k] */
     int lit[VIEWER_MAX_TFS];
     vf_lighting_t lighting[VIEWER_MAX_TFS];
     int threads;
 } viewer_scene_t;
+
+/* The rays of a frame of this volume (the full one or the preview), lit or not: --rays or the spacing's default
+ * for the full volume, one for the preview. */
+uint32_t viewer_rays(const viewer_scene_t *scene, const vfp_volume_t *volume, int lit);
 
 /* A renderer and the controls it was last brought up to date with. */
 typedef struct viewer_renderer {

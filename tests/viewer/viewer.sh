@@ -96,7 +96,7 @@ frames_match "idle frames equal volfix-sim" phantom:marschner-lobb:64 "$tmp/idle
 if [ -f "$data/headsq.nhdr" ]; then
     run_viewer aniso --board "$board" "$data/headsq.nhdr" --script "$tmp/idle.script" --device "$tmp/aniso" \
         --log "$tmp/aniso.log"
-    if [ $status -eq 0 ] && grep -q 'anisotropic spacing 2.13x: rays 2 by default' "$tmp/aniso.out" &&
+    if [ $status -eq 0 ] && grep -q 'anisotropic spacing 2.13x: unlit full-quality frames at 2 rays' "$tmp/aniso.out" &&
         sed -n 1p "$tmp/aniso.log" | grep -q ' preview .*--rays 1$' &&
         sed -n 2p "$tmp/aniso.log" | grep -q ' full .*--rays 2$'; then
         ok "headsq: full quality at 2 rays, previews at 1, said at start"
