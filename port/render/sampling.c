@@ -25,6 +25,6 @@ void vfp_sampling_text(const vfp_sampling_t *s, char *out, size_t outlen)
         snprintf(out, outlen, "; anisotropic spacing %.2fx: one ray, lit frames gain nothing from more",
                  s->anisotropy);
     else
-        snprintf(out, outlen, "; anisotropic spacing %.2fx: rays %u by default (--rays 1: a third of the work)",
+        snprintf(out, outlen, "; anisotropic spacing %.2fx: rays %u by default (--rays 1: 3 to 7 times less work)",
                  s->anisotropy, s->rays);
 }

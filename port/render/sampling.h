@@ -32,7 +32,7 @@ typedef struct vfp_sampling {
 vfp_sampling_t vfp_sampling_choose(const vfp_volume_t *vol, uint32_t rays_given, int lit);
 
 /* The summary line's words, "" for an isotropic volume or when --rays was given:
- * "; anisotropic spacing 2.13x: rays 2 by default (--rays 1: a third of the work)". */
+ * "; anisotropic spacing 2.13x: rays 2 by default (--rays 1: 3 to 7 times less work)". */
 void vfp_sampling_text(const vfp_sampling_t *s, char *out, size_t outlen);
 
 #endif
