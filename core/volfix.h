@@ -27,14 +27,14 @@
 
 /* The library's version (CHANGELOG.md); vf_version() gives it as text, "MAJOR.MINOR.PATCH". */
 #define VF_VERSION_MAJOR 0
-#define VF_VERSION_MINOR 6
+#define VF_VERSION_MINOR 7
 #define VF_VERSION_PATCH 0
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* The version this library was built as, "0.6.0": the macros above as text. */
+/* The version this library was built as, "0.7.0": the macros above as text. */
 const char *vf_version(void);
 
 /* ---------------------------------------------------------------------------------------------------------- */
