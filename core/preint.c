@@ -107,6 +107,10 @@ static void transmittances(const vfi_table_scratch_t *scratch, uint32_t visible_
 static void transmittances_lit(const vfi_table_scratch_t *scratch, uint32_t visible_count, uint32_t count,
                                uint64_t length_q28);
 static uint64_t piece_length_q28(uint32_t slab_q16, uint32_t r);
+#if VF_TABLE_ON_DEMAND
+static void transmittances_listed(const vfi_table_scratch_t *scratch, uint32_t k_lo, uint32_t k_hi,
+                                  uint64_t length_q28, bool lit);
+#endif
 
 size_t vfi_table_scratch_bytes(uint32_t n)
 {
@@ -139,26 +143,45 @@ static inline diagonal_t diagonal(const vfi_table_scratch_t *scratch, vfi_table_
     return d;
 }
 
+/* The block of diagonal d's windows that start at s0 .. s0+r-1 (s0 a multiple of r, s0 + r <= count), both
+ * triangles, once the transmittances of its intervals s0 .. block_end(d, s0) + r - 1 are in place. The windows
+ * f .. f+r-1 start at f = 0 .. count - r; the block holds the starts s0 .. end, and its visible intervals are
+ * listed at k_lo .. k_hi - 1. Blocks share nothing but the transmittances: any one can be built alone. */
+static inline uint32_t block_end(const diagonal_t *d, uint32_t s0)
+{
+    const uint32_t count = d->n - 1, r = d->r;
+    return s0 + r - 1 < count - r ? s0 + r - 1 : count - r;
+}
+
+static VF_ALWAYS_INLINE void build_block(const diagonal_t *d, uint32_t s0, bool grey, bool lit)
+{
+    const uint32_t r = d->r, end = block_end(d, s0);
+    const uint32_t k_lo = d->first_visible[s0], k_hi = d->first_visible[s0 + r];
+    /* the prefixes add intervals s0+r .. end+r-1: when those and the block are all visible, no entry repeats the
+     * last one and the suffix of f is listed at k_lo + f - s0 */
+    const bool dense = k_hi - k_lo == r && d->first_visible[end + r] - k_hi == end - s0;
+    if (!VF_LIT_TABLES || !lit) {
+        if (dense)
+            VF_SPECIAL_LOOPS && grey ? block_dense_grey(d, s0, end, k_lo) : block_dense(d, s0, end, k_lo);
+        else
+            block_sparse(d, s0, end, k_lo, k_hi);
+    } else {
+        if (dense)
+            VF_SPECIAL_LOOPS && grey ? block_dense_grey_lit(d, s0, end, k_lo) : block_dense_lit(d, s0, end, k_lo);
+        else
+            block_sparse_lit(d, s0, end, k_lo, k_hi);
+    }
+}
+
 /* Diagonal r, both triangles: transmittances for pieces of d / r, then the blocks. */
 static void build_diagonal(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
                            uint32_t visible_count, bool grey, vfi_table_out_t out, uint32_t r)
 {
     const uint32_t count = cls->n - 1; /* count intervals */
-    const uint16_t *first_visible = scratch->first_visible;
     const diagonal_t d = diagonal(scratch, out, cls->n, r);
     transmittances(scratch, visible_count, count, piece_length_q28(slab_q16, r));
-    /* The windows f .. f+r-1 start at f = 0 .. count - r; the block s0 .. s0+r-1 holds the starts s0 .. end, and
-     * its visible intervals are listed at k_lo .. k_hi - 1. */
-    for (uint32_t s0 = 0; s0 + r <= count; s0 += r) {
-        const uint32_t end = s0 + r - 1 < count - r ? s0 + r - 1 : count - r;
-        const uint32_t k_lo = first_visible[s0], k_hi = first_visible[s0 + r];
-        /* the prefixes add intervals s0+r .. end+r-1: when those and the block are all visible, no entry repeats
-         * the last one and the suffix of f is listed at k_lo + f - s0 */
-        if (k_hi - k_lo == r && first_visible[end + r] - k_hi == end - s0)
-            VF_SPECIAL_LOOPS && grey ? block_dense_grey(&d, s0, end, k_lo) : block_dense(&d, s0, end, k_lo);
-        else
-            block_sparse(&d, s0, end, k_lo, k_hi);
-    }
+    for (uint32_t s0 = 0; s0 + r <= count; s0 += r)
+        build_block(&d, s0, grey, false);
 }
 
 /* The same with the front-weighted outputs (lit builds): alpha t(x) beside each transmittance, the lit blocks.
@@ -168,19 +191,12 @@ static void build_diagonal_lit(const vfi_classify_t *cls, uint32_t slab_q16, con
                                uint32_t visible_count, bool grey, vfi_table_out_t out, uint32_t r)
 {
     const uint32_t count = cls->n - 1;
-    const uint16_t *first_visible = scratch->first_visible;
     diagonal_t d = diagonal(scratch, out, cls->n, r);
     d.suf_lit = scratch->suffix_lit;
     d.recip = vfi_udiv64((UINT64_C(1) << 40) + r / 2, r);
     transmittances_lit(scratch, visible_count, count, piece_length_q28(slab_q16, r));
-    for (uint32_t s0 = 0; s0 + r <= count; s0 += r) {
-        const uint32_t end = s0 + r - 1 < count - r ? s0 + r - 1 : count - r;
-        const uint32_t k_lo = first_visible[s0], k_hi = first_visible[s0 + r];
-        if (k_hi - k_lo == r && first_visible[end + r] - k_hi == end - s0)
-            VF_SPECIAL_LOOPS && grey ? block_dense_grey_lit(&d, s0, end, k_lo) : block_dense_lit(&d, s0, end, k_lo);
-        else
-            block_sparse_lit(&d, s0, end, k_lo, k_hi);
-    }
+    for (uint32_t s0 = 0; s0 + r <= count; s0 += r)
+        build_block(&d, s0, grey, true);
 }
 
 /* The diagonals share nothing but the classification, so parts can build them side by side: part p of P takes
@@ -921,13 +937,38 @@ void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, ui
     demand->visible_count = list_intervals(cls, scratch, &demand->grey);
 }
 
-void vfi_preint_demand_diagonal(const vfi_demand_t *demand, uint32_t f, uint32_t b)
+/* Entry (f, b)'s block of its diagonal r = |b - f| (build_block): the window lo .. lo+r-1, lo = min(f, b), gives
+ * both (lo, lo+r) and (lo+r, lo), and is in the block from s0 = lo - lo mod r. Only that block's intervals get
+ * their transmittances for pieces of d / r, so a block costs O(r) however long its diagonal: a frame reads few
+ * of a short diagonal's many blocks (docs/performance.md). */
+void vfi_preint_demand_entry(const vfi_demand_t *demand, uint32_t f, uint32_t b)
 {
-    if (vfi_table_out_lit(demand->out))
-        build_diagonal_lit(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->grey,
-                           demand->out, f > b ? f - b : b - f);
-    else
-        build_diagonal(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->grey,
-                       demand->out, f > b ? f - b : b - f);
+    const uint32_t lo = f < b ? f : b, r = f < b ? b - f : f - b;
+    if (r == 0) /* the diagonal itself: built at begin */
+        return;
+    const vfi_table_scratch_t *scratch = demand->scratch;
+    diagonal_t d = diagonal(scratch, demand->out, demand->cls->n, r);
+    const uint32_t s0 = lo - lo % r;
+    const uint32_t k_lo = scratch->first_visible[s0], k_hi = scratch->first_visible[block_end(&d, s0) + r];
+    const uint64_t length_q28 = piece_length_q28(demand->slab_q16, r);
+    if (VF_LIT_TABLES && vfi_table_out_lit(demand->out)) {
+        transmittances_listed(scratch, k_lo, k_hi, length_q28, true);
+        d.suf_lit = scratch->suffix_lit;
+        d.recip = vfi_udiv64((UINT64_C(1) << 40) + r / 2, r);
+        build_block(&d, s0, demand->grey, true);
+    } else {
+        transmittances_listed(scratch, k_lo, k_hi, length_q28, false);
+        build_block(&d, s0, demand->grey, false);
+    }
+}
+
+/* The listed intervals k_lo .. k_hi - 1's transmittances (lit: and alpha t(x)) for pieces of length_q28. */
+static void transmittances_listed(const vfi_table_scratch_t *scratch, uint32_t k_lo, uint32_t k_hi,
+                                  uint64_t length_q28, bool lit)
+{
+    const uint32_t *exp_tables = vfi_exp_neg_tables();
+    vfi_interval_t *iv = scratch->interval + 1;
+    for (uint32_t k = k_lo; k < k_hi; k++)
+        transmittance(exp_tables, &iv[scratch->visible[k]], length_q28, lit);
 }
 #endif
