@@ -93,12 +93,12 @@ typedef struct window {
     uint64_t r, g, b, br, bg, bb, a;
 } window_t;
 
-static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
-static void block_dense_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
-static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi);
-static void block_dense_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
-static void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
-static void block_sparse_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi);
+static VF_ALWAYS_INLINE void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
+static VF_ALWAYS_INLINE void block_dense_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
+static VF_ALWAYS_INLINE void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi);
+static VF_ALWAYS_INLINE void block_dense_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
+static VF_ALWAYS_INLINE void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
+static VF_ALWAYS_INLINE void block_sparse_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi);
 static void store_pair_q30(vfi_table_out_t out, size_t up, size_t down, uint32_t r, uint32_t g, uint32_t b,
                            uint32_t br, uint32_t bg, uint32_t bb, uint32_t a);
 static uint32_t list_intervals(const vfi_classify_t *cls, const vfi_table_scratch_t *scratch, bool *grey);
@@ -178,10 +178,18 @@ static void build_diagonal(const vfi_classify_t *cls, uint32_t slab_q16, const v
                            uint32_t visible_count, bool grey, vfi_table_out_t out, uint32_t r)
 {
     const uint32_t count = cls->n - 1; /* count intervals */
+    const uint16_t *first_visible = scratch->first_visible;
     const diagonal_t d = diagonal(scratch, out, cls->n, r);
     transmittances(scratch, visible_count, count, piece_length_q28(slab_q16, r));
-    for (uint32_t s0 = 0; s0 + r <= count; s0 += r)
-        build_block(&d, s0, grey, false);
+    /* build_block's body, written out: so the loop comes out some instructions shorter (callgrind) */
+    for (uint32_t s0 = 0; s0 + r <= count; s0 += r) {
+        const uint32_t end = s0 + r - 1 < count - r ? s0 + r - 1 : count - r;
+        const uint32_t k_lo = first_visible[s0], k_hi = first_visible[s0 + r];
+        if (k_hi - k_lo == r && first_visible[end + r] - k_hi == end - s0)
+            VF_SPECIAL_LOOPS && grey ? block_dense_grey(&d, s0, end, k_lo) : block_dense(&d, s0, end, k_lo);
+        else
+            block_sparse(&d, s0, end, k_lo, k_hi);
+    }
 }
 
 /* The same with the front-weighted outputs (lit builds): alpha t(x) beside each transmittance, the lit blocks.
@@ -407,8 +415,20 @@ static inline uint64_t less_moment(uint64_t c, uint64_t m_q22, uint64_t recip)
     return c >= mr + HALF_Q15_IN_Q60 ? c - mr : HALF_Q15_IN_Q60;
 }
 
-/* Entries up and down's front-weighted values from e (up's r, g, b, a, then down's; window_t's form). */
-static inline void store_lit_window(vfi_table_out_t out, size_t up, size_t down, const uint64_t e[8])
+/* store_lit_window's formats other than the default: through Q.30, as store_window rounds them. */
+static VF_NOINLINE void store_lit_window_q30(vfi_table_out_t out, size_t up, size_t down, const uint64_t e[8])
+{
+    const uint64_t unhalf = HALF_Q15_IN_Q60 - HALF_Q30;
+    uint32_t q[8];
+    for (int c = 0; c < 8; c++)
+        q[c] = (uint32_t)((e[c] - unhalf) >> 30);
+    vfi_store_lit_q30(out, up, q[0], q[1], q[2], q[3]);
+    vfi_store_lit_q30(out, down, q[4], q[5], q[6], q[7]);
+}
+
+/* Entries up and down's front-weighted values from e (up's r, g, b, a, then down's; window_t's form). The default
+ * format inline, so that e stays in registers: once a window, about 60 instructions less out of line. */
+static VF_ALWAYS_INLINE void store_lit_window(vfi_table_out_t out, size_t up, size_t down, const uint64_t e[8])
 {
     if (out.lit_q15 && !out.grid_bits) {
         uint16_t *u = out.lit_q15 + up * 4, *w = out.lit_q15 + down * 4;
@@ -417,12 +437,7 @@ static inline void store_lit_window(vfi_table_out_t out, size_t up, size_t down,
             w[c] = (uint16_t)(e[4 + c] >> 45);
         }
     } else {
-        const uint64_t unhalf = HALF_Q15_IN_Q60 - HALF_Q30; /* store_window's way through Q.30 */
-        uint32_t q[8];
-        for (int c = 0; c < 8; c++)
-            q[c] = (uint32_t)((e[c] - unhalf) >> 30);
-        vfi_store_lit_q30(out, up, q[0], q[1], q[2], q[3]);
-        vfi_store_lit_q30(out, down, q[4], q[5], q[6], q[7]);
+        store_lit_window_q30(out, up, down, e);
     }
 }
 
@@ -643,7 +658,7 @@ static VF_ALWAYS_INLINE void block_dense_body(const diagonal_t *d, uint32_t s0, 
     }
 }
 
-static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
+static VF_ALWAYS_INLINE void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
 {
     block_dense_body(d, s0, end, k_lo, false, false);
 }
@@ -652,17 +667,17 @@ static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t
  * the same numbers, so one is worked out and stored three times; the table is the three-channel one to the bit
  * (tests/core/test_classify_tables.c); about 2% of engine's preint1 frame (docs/performance.md). Not in builds
  * without VF_SPECIAL_LOOPS. */
-static void block_dense_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
+static VF_ALWAYS_INLINE void block_dense_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
 {
     block_dense_body(d, s0, end, k_lo, true, false);
 }
 
-static void block_dense_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
+static VF_ALWAYS_INLINE void block_dense_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
 {
     block_dense_body(d, s0, end, k_lo, false, true);
 }
 
-static void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
+static VF_ALWAYS_INLINE void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
 {
     block_dense_body(d, s0, end, k_lo, true, true);
 }
@@ -802,12 +817,12 @@ static VF_ALWAYS_INLINE void block_sparse_body(const diagonal_t *d, uint32_t s0,
     }
 }
 
-static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
+static VF_ALWAYS_INLINE void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
 {
     block_sparse_body(d, s0, end, k_lo, k_hi, false);
 }
 
-static void block_sparse_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
+static VF_ALWAYS_INLINE void block_sparse_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
 {
     block_sparse_body(d, s0, end, k_lo, k_hi, true);
 }

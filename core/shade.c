@@ -82,15 +82,20 @@ static int64_t dot_q30(const int32_t n[3], const int64_t w[3])
     return (sum + (INT64_C(1) << 29)) >> 30;
 }
 
-/* x^e for x in [0, 1], Q.30, by squaring: about 2 log2(e) products, each rounded */
+/* x^e for x in [0, 1], Q.30, by squaring: x^(2^j) for each bit j of e, rounded, multiplied into the result from
+ * the lowest bit up, each product rounded. The result starts as the lowest bit's power itself, which is 1.0 times it
+ * rounded (exact: x 2^30 + 2^29 >> 30 = x), and nothing is squared past the highest bit. */
 static uint64_t power_q30(uint64_t x, uint32_t e)
 {
-    uint64_t result = (uint64_t)ONE_Q30;
-    while (e) {
+    if (e == 0)
+        return (uint64_t)ONE_Q30;
+    for (; !(e & 1u); e >>= 1)
+        x = (x * x + (UINT64_C(1) << 29)) >> 30;
+    uint64_t result = x;
+    for (e >>= 1; e; e >>= 1) {
+        x = (x * x + (UINT64_C(1) << 29)) >> 30;
         if (e & 1u)
             result = (result * x + (UINT64_C(1) << 29)) >> 30;
-        x = (x * x + (UINT64_C(1) << 29)) >> 30;
-        e >>= 1;
     }
     return result;
 }
