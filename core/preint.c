@@ -112,8 +112,8 @@ static void transmittances_lit(const vfi_table_scratch_t *scratch, uint32_t visi
                                uint64_t length_q28);
 static uint64_t piece_length_q28(uint32_t slab_q16, uint32_t r);
 #if VF_TABLE_ON_DEMAND
-static void transmittances_listed(const vfi_table_scratch_t *scratch, uint32_t k_lo, uint32_t k_hi,
-                                  uint64_t length_q28, bool lit);
+static VF_ALWAYS_INLINE void transmittances_listed(const vfi_table_scratch_t *scratch, uint32_t k_lo,
+                                                   uint32_t k_hi, uint64_t length_q28, bool lit);
 #endif
 
 size_t vfi_table_scratch_bytes(uint32_t n)
@@ -1004,8 +1004,8 @@ void vfi_preint_demand_entry(const vfi_demand_t *demand, uint32_t f, uint32_t b)
 }
 
 /* The listed intervals k_lo .. k_hi - 1's transmittances (lit: and alpha t(x)) for pieces of length_q28. */
-static void transmittances_listed(const vfi_table_scratch_t *scratch, uint32_t k_lo, uint32_t k_hi,
-                                  uint64_t length_q28, bool lit)
+static VF_ALWAYS_INLINE void transmittances_listed(const vfi_table_scratch_t *scratch, uint32_t k_lo,
+                                                   uint32_t k_hi, uint64_t length_q28, bool lit)
 {
     const uint32_t *exp_tables = vfi_exp_neg_tables();
     vfi_interval_t *iv = scratch->interval + 1;
