@@ -47,12 +47,12 @@ typedef struct plain_row {
     bool nearest_shade, grey;
 } plain_row_t;
 
-/* Entry e of a table built as read (tables.h), found unbuilt: its diagonal built. Out of line: the loop meets
- * one per diagonal at most. */
+/* Entry e of a table built as read (tables.h), found unbuilt: the block of its diagonal that holds it built. Out
+ * of line: the loop meets one per block at most. */
 static VF_NOINLINE void build_entry(const vfi_demand_t *demand, const uint16_t *table, uint32_t n, const uint16_t *e)
 {
     const uint32_t k = (uint32_t)(e - table) / 4;
-    vfi_preint_demand_diagonal(demand, k / n, k % n);
+    vfi_preint_demand_entry(demand, k / n, k % n);
 }
 
 /* Pixel u's entry: its front position from the buffer (buffered) or sampled here (pr's fields), its back position
@@ -139,7 +139,7 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
         /* the front shade read before the back one is stored: an image-sized buffer holds both in one place */
         uint32_t front = buffered ? l.front_buf[c + off] : 0, back;
         const uint16_t *e = plain_entry(&l, pr, u, buffered, n256);
-        if (VF_TABLE_ON_DEMAND && !e[3] && e[0] == VFI_UNBUILT_Q15) /* its diagonal, the lit values with it */
+        if (VF_TABLE_ON_DEMAND && !e[3] && e[0] == VFI_UNBUILT_Q15) /* its block, the lit values with it */
             build_entry(pr->demand, l.table, l.n, e);
         if (nearest) {
             back = vfi_shade_pack(shade[pr->back_codes[c]]);

@@ -93,12 +93,16 @@ typedef struct window {
     uint64_t r, g, b, br, bg, bb, a;
 } window_t;
 
-static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
-static void block_dense_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
-static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi);
-static void block_dense_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
-static void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
-static void block_sparse_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi);
+static VF_ALWAYS_INLINE void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
+static VF_ALWAYS_INLINE void block_dense_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
+static VF_ALWAYS_INLINE void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi);
+static VF_ALWAYS_INLINE void block_sparse_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo,
+                                               uint32_t k_hi);
+static VF_ALWAYS_INLINE void block_dense_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
+static VF_ALWAYS_INLINE void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo);
+static VF_ALWAYS_INLINE void block_sparse_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi);
+static VF_ALWAYS_INLINE void block_sparse_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo,
+                                                   uint32_t k_hi);
 static void store_pair_q30(vfi_table_out_t out, size_t up, size_t down, uint32_t r, uint32_t g, uint32_t b,
                            uint32_t br, uint32_t bg, uint32_t bb, uint32_t a);
 static uint32_t list_intervals(const vfi_classify_t *cls, const vfi_table_scratch_t *scratch, bool *grey);
@@ -107,6 +111,10 @@ static void transmittances(const vfi_table_scratch_t *scratch, uint32_t visible_
 static void transmittances_lit(const vfi_table_scratch_t *scratch, uint32_t visible_count, uint32_t count,
                                uint64_t length_q28);
 static uint64_t piece_length_q28(uint32_t slab_q16, uint32_t r);
+#if VF_TABLE_ON_DEMAND
+static VF_ALWAYS_INLINE void transmittances_listed(const vfi_table_scratch_t *scratch, uint32_t k_lo,
+                                                   uint32_t k_hi, uint64_t length_q28, bool lit);
+#endif
 
 size_t vfi_table_scratch_bytes(uint32_t n)
 {
@@ -139,26 +147,46 @@ static inline diagonal_t diagonal(const vfi_table_scratch_t *scratch, vfi_table_
     return d;
 }
 
+/* The block of diagonal d's windows that start at s0 .. s0+r-1 (s0 a multiple of r, s0 + r <= count), both
+ * triangles, once the transmittances of its intervals s0 .. block_end(d, s0) + r - 1 are in place. The windows
+ * f .. f+r-1 start at f = 0 .. count - r; the block holds the starts s0 .. end, and its visible intervals are
+ * listed at k_lo .. k_hi - 1. Blocks share nothing but the transmittances: any one can be built alone. */
+static inline uint32_t block_end(const diagonal_t *d, uint32_t s0)
+{
+    const uint32_t count = d->n - 1, r = d->r;
+    return s0 + r - 1 < count - r ? s0 + r - 1 : count - r;
+}
+
+static VF_ALWAYS_INLINE void build_block(const diagonal_t *d, uint32_t s0, bool grey, bool lit)
+{
+    const uint32_t r = d->r, end = block_end(d, s0);
+    const uint32_t k_lo = d->first_visible[s0], k_hi = d->first_visible[s0 + r];
+    /* the prefixes add intervals s0+r .. end+r-1: when those and the block are all visible, no entry repeats the
+     * last one and the suffix of f is listed at k_lo + f - s0 */
+    const bool dense = k_hi - k_lo == r && d->first_visible[end + r] - k_hi == end - s0;
+    if (!VF_LIT_TABLES || !lit) {
+        if (dense)
+            VF_SPECIAL_LOOPS && grey ? block_dense_grey(d, s0, end, k_lo) : block_dense(d, s0, end, k_lo);
+        else
+            VF_SPECIAL_LOOPS && grey ? block_sparse_grey(d, s0, end, k_lo, k_hi) : block_sparse(d, s0, end, k_lo, k_hi);
+    } else {
+        if (dense)
+            VF_SPECIAL_LOOPS && grey ? block_dense_grey_lit(d, s0, end, k_lo) : block_dense_lit(d, s0, end, k_lo);
+        else
+            VF_SPECIAL_LOOPS && grey ? block_sparse_grey_lit(d, s0, end, k_lo, k_hi)
+                                     : block_sparse_lit(d, s0, end, k_lo, k_hi);
+    }
+}
+
 /* Diagonal r, both triangles: transmittances for pieces of d / r, then the blocks. */
 static void build_diagonal(const vfi_classify_t *cls, uint32_t slab_q16, const vfi_table_scratch_t *scratch,
                            uint32_t visible_count, bool grey, vfi_table_out_t out, uint32_t r)
 {
     const uint32_t count = cls->n - 1; /* count intervals */
-    const uint16_t *first_visible = scratch->first_visible;
     const diagonal_t d = diagonal(scratch, out, cls->n, r);
     transmittances(scratch, visible_count, count, piece_length_q28(slab_q16, r));
-    /* The windows f .. f+r-1 start at f = 0 .. count - r; the block s0 .. s0+r-1 holds the starts s0 .. end, and
-     * its visible intervals are listed at k_lo .. k_hi - 1. */
-    for (uint32_t s0 = 0; s0 + r <= count; s0 += r) {
-        const uint32_t end = s0 + r - 1 < count - r ? s0 + r - 1 : count - r;
-        const uint32_t k_lo = first_visible[s0], k_hi = first_visible[s0 + r];
-        /* the prefixes add intervals s0+r .. end+r-1: when those and the block are all visible, no entry repeats
-         * the last one and the suffix of f is listed at k_lo + f - s0 */
-        if (k_hi - k_lo == r && first_visible[end + r] - k_hi == end - s0)
-            VF_SPECIAL_LOOPS && grey ? block_dense_grey(&d, s0, end, k_lo) : block_dense(&d, s0, end, k_lo);
-        else
-            block_sparse(&d, s0, end, k_lo, k_hi);
-    }
+    for (uint32_t s0 = 0; s0 + r <= count; s0 += r)
+        build_block(&d, s0, grey, false);
 }
 
 /* The same with the front-weighted outputs (lit builds): alpha t(x) beside each transmittance, the lit blocks.
@@ -168,19 +196,12 @@ static void build_diagonal_lit(const vfi_classify_t *cls, uint32_t slab_q16, con
                                uint32_t visible_count, bool grey, vfi_table_out_t out, uint32_t r)
 {
     const uint32_t count = cls->n - 1;
-    const uint16_t *first_visible = scratch->first_visible;
     diagonal_t d = diagonal(scratch, out, cls->n, r);
     d.suf_lit = scratch->suffix_lit;
     d.recip = vfi_udiv64((UINT64_C(1) << 40) + r / 2, r);
     transmittances_lit(scratch, visible_count, count, piece_length_q28(slab_q16, r));
-    for (uint32_t s0 = 0; s0 + r <= count; s0 += r) {
-        const uint32_t end = s0 + r - 1 < count - r ? s0 + r - 1 : count - r;
-        const uint32_t k_lo = first_visible[s0], k_hi = first_visible[s0 + r];
-        if (k_hi - k_lo == r && first_visible[end + r] - k_hi == end - s0)
-            VF_SPECIAL_LOOPS && grey ? block_dense_grey_lit(&d, s0, end, k_lo) : block_dense_lit(&d, s0, end, k_lo);
-        else
-            block_sparse_lit(&d, s0, end, k_lo, k_hi);
-    }
+    for (uint32_t s0 = 0; s0 + r <= count; s0 += r)
+        build_block(&d, s0, grey, true);
 }
 
 /* The diagonals share nothing but the classification, so parts can build them side by side: part p of P takes
@@ -225,29 +246,34 @@ static inline uint32_t behind(uint32_t t_v, uint32_t c, uint32_t w)
     return (uint32_t)((int64_t)w + (((int64_t)t_v * ((int64_t)c - (int64_t)w) + (int64_t)HALF_Q30) >> 30));
 }
 
-/* Interval v joins run x at its front (block_sparse). */
-static inline void pair_add_front(pair_t *x, const vfi_interval_t *v)
+/* Interval v joins run x at its front (block_sparse). grey: the first channel alone (the others, never read, are
+ * left as they were). */
+static VF_ALWAYS_INLINE void pair_add_front(pair_t *x, const vfi_interval_t *v, bool grey)
 {
     const uint32_t t = mul_q30(x->t, v->t), dt = x->t - t;
     x->r = behind(v->t, x->r, v->w[0]);
-    x->g = behind(v->t, x->g, v->w[1]);
-    x->b = behind(v->t, x->b, v->w[2]);
     x->br = in_front(x->br, v->w[0], dt);
-    x->bg = in_front(x->bg, v->w[1], dt);
-    x->bb = in_front(x->bb, v->w[2], dt);
+    if (!grey) {
+        x->g = behind(v->t, x->g, v->w[1]);
+        x->b = behind(v->t, x->b, v->w[2]);
+        x->bg = in_front(x->bg, v->w[1], dt);
+        x->bb = in_front(x->bb, v->w[2], dt);
+    }
     x->t = t;
 }
 
 /* Interval v joins run x at its back (block_sparse). */
-static inline void pair_add_back(pair_t *x, const vfi_interval_t *v)
+static VF_ALWAYS_INLINE void pair_add_back(pair_t *x, const vfi_interval_t *v, bool grey)
 {
     const uint32_t t = mul_q30(x->t, v->t), dt = x->t - t;
     x->r = in_front(x->r, v->w[0], dt);
-    x->g = in_front(x->g, v->w[1], dt);
-    x->b = in_front(x->b, v->w[2], dt);
     x->br = behind(v->t, x->br, v->w[0]);
-    x->bg = behind(v->t, x->bg, v->w[1]);
-    x->bb = behind(v->t, x->bb, v->w[2]);
+    if (!grey) {
+        x->g = in_front(x->g, v->w[1], dt);
+        x->b = in_front(x->b, v->w[2], dt);
+        x->bg = behind(v->t, x->bg, v->w[1]);
+        x->bb = behind(v->t, x->bb, v->w[2]);
+    }
     x->t = t;
 }
 
@@ -368,18 +394,20 @@ static VF_ALWAYS_INLINE void dense_add_lit(run_t *x, moments_t *m, const vfi_int
 /* block_sparse's pair_add_front and pair_add_back with the moments: v at interval m_v, *end the interval that
  * joined last at that end (the block's end when none has), depth the intervals from the run's other end. */
 static VF_ALWAYS_INLINE void sparse_add_lit(pair_t *x, moments_t *m, const vfi_interval_t *iv, uint32_t m_v,
-                                            uint32_t *end, uint32_t depth, bool at_front)
+                                            uint32_t *end, uint32_t depth, bool at_front, bool grey)
 {
     const vfi_interval_t *v = iv + m_v;
     const uint64_t gap = at_front ? *end - m_v : m_v - *end;
     const uint32_t t0 = x->t;
     uint64_t shift[4];
     shift[0] = gap * q22_of_q30(at_front ? x->r : x->br);
-    shift[1] = gap * q22_of_q30(at_front ? x->g : x->bg);
-    shift[2] = gap * q22_of_q30(at_front ? x->b : x->bb);
+    if (!grey) {
+        shift[1] = gap * q22_of_q30(at_front ? x->g : x->bg);
+        shift[2] = gap * q22_of_q30(at_front ? x->b : x->bb);
+    }
     shift[3] = gap * q22_of_q30(ONE_Q30 - t0);
-    at_front ? pair_add_front(x, v) : pair_add_back(x, v);
-    moments_add(m, at_front, shift, t0, x->t, v, depth, false);
+    at_front ? pair_add_front(x, v, grey) : pair_add_back(x, v, grey);
+    moments_add(m, at_front, shift, t0, x->t, v, depth, grey);
     *end = m_v;
 }
 
@@ -391,8 +419,20 @@ static inline uint64_t less_moment(uint64_t c, uint64_t m_q22, uint64_t recip)
     return c >= mr + HALF_Q15_IN_Q60 ? c - mr : HALF_Q15_IN_Q60;
 }
 
-/* Entries up and down's front-weighted values from e (up's r, g, b, a, then down's; window_t's form). */
-static inline void store_lit_window(vfi_table_out_t out, size_t up, size_t down, const uint64_t e[8])
+/* store_lit_window's formats other than the default: through Q.30, as store_window rounds them. */
+static VF_NOINLINE void store_lit_window_q30(vfi_table_out_t out, size_t up, size_t down, const uint64_t e[8])
+{
+    const uint64_t unhalf = HALF_Q15_IN_Q60 - HALF_Q30;
+    uint32_t q[8];
+    for (int c = 0; c < 8; c++)
+        q[c] = (uint32_t)((e[c] - unhalf) >> 30);
+    vfi_store_lit_q30(out, up, q[0], q[1], q[2], q[3]);
+    vfi_store_lit_q30(out, down, q[4], q[5], q[6], q[7]);
+}
+
+/* Entries up and down's front-weighted values from e (up's r, g, b, a, then down's; window_t's form). The default
+ * format inline, so that e stays in registers: once a window, about 60 instructions less out of line. */
+static VF_ALWAYS_INLINE void store_lit_window(vfi_table_out_t out, size_t up, size_t down, const uint64_t e[8])
 {
     if (out.lit_q15 && !out.grid_bits) {
         uint16_t *u = out.lit_q15 + up * 4, *w = out.lit_q15 + down * 4;
@@ -401,12 +441,7 @@ static inline void store_lit_window(vfi_table_out_t out, size_t up, size_t down,
             w[c] = (uint16_t)(e[4 + c] >> 45);
         }
     } else {
-        const uint64_t unhalf = HALF_Q15_IN_Q60 - HALF_Q30; /* store_window's way through Q.30 */
-        uint32_t q[8];
-        for (int c = 0; c < 8; c++)
-            q[c] = (uint32_t)((e[c] - unhalf) >> 30);
-        vfi_store_lit_q30(out, up, q[0], q[1], q[2], q[3]);
-        vfi_store_lit_q30(out, down, q[4], q[5], q[6], q[7]);
+        store_lit_window_q30(out, up, down, e);
     }
 }
 
@@ -627,7 +662,7 @@ static VF_ALWAYS_INLINE void block_dense_body(const diagonal_t *d, uint32_t s0, 
     }
 }
 
-static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
+static VF_ALWAYS_INLINE void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
 {
     block_dense_body(d, s0, end, k_lo, false, false);
 }
@@ -636,17 +671,17 @@ static void block_dense(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t
  * the same numbers, so one is worked out and stored three times; the table is the three-channel one to the bit
  * (tests/core/test_classify_tables.c); about 2% of engine's preint1 frame (docs/performance.md). Not in builds
  * without VF_SPECIAL_LOOPS. */
-static void block_dense_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
+static VF_ALWAYS_INLINE void block_dense_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
 {
     block_dense_body(d, s0, end, k_lo, true, false);
 }
 
-static void block_dense_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
+static VF_ALWAYS_INLINE void block_dense_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
 {
     block_dense_body(d, s0, end, k_lo, false, true);
 }
 
-static void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
+static VF_ALWAYS_INLINE void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo)
 {
     block_dense_body(d, s0, end, k_lo, true, true);
 }
@@ -655,10 +690,11 @@ static void block_dense_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end,
  * none when k = k_hi) has its front moments taken from there to f; the prefix its back moments from the back of
  * the interval that joined it last (p_back) to the window's back. The positions count every interval, seen or
  * not: that is why no window's lit values repeat the last one's, where its main ones do. The moments into *m;
- * a window of nothing seen (both runs' transmittance 1, so every sum exactly 0) stores zeros and returns false. */
+ * a window of nothing seen (both runs' transmittance 1, so every sum exactly 0) stores zeros and returns false.
+ * grey: the first channel and opacity alone, as lit_window reads them. */
 static VF_ALWAYS_INLINE bool sparse_lit_window(const diagonal_t *d, const window_t *x, uint32_t s0, uint32_t f,
                                                uint32_t k_hi, const pair_t *pre, const moments_t *pm,
-                                               uint32_t p_back, size_t up, size_t down, window_moments_t *m)
+                                               uint32_t p_back, size_t up, size_t down, window_moments_t *m, bool grey)
 {
     static const uint32_t no_colour[3] = {0, 0, 0};
     const uint32_t r = d->r, k = d->first_visible[f];
@@ -672,7 +708,7 @@ static VF_ALWAYS_INLINE bool sparse_lit_window(const diagonal_t *d, const window
         if (st != ONE_Q30) {
             const vfi_suffix_lit_t *sl = &d->suf_lit[k];
             const uint64_t delta = d->visible[k] - f;
-            for (int c = 0; c < 3; c++) /* block_sparse keeps the colour as (C << 30) + the half */
+            for (int c = 0; c < (grey ? 1 : 3); c++) /* block_sparse keeps the colour as (C << 30) + the half */
                 sf[c] = sl->front[c] + delta * q22_of_q30((s->front_q60[c] - HALF_Q15_IN_Q60) >> 30);
             sf[3] = sl->front[3] + delta * q22_of_q30(ONE_Q30 - st);
             sb = sl->back;
@@ -690,11 +726,13 @@ static VF_ALWAYS_INLINE bool sparse_lit_window(const diagonal_t *d, const window
     }
     const uint64_t eps = f + r - 1 - p_back;
     pb[0] = pm->back[0] + eps * q22_of_q30(pre->br);
-    pb[1] = pm->back[1] + eps * q22_of_q30(pre->bg);
-    pb[2] = pm->back[2] + eps * q22_of_q30(pre->bb);
+    if (!grey) {
+        pb[1] = pm->back[1] + eps * q22_of_q30(pre->bg);
+        pb[2] = pm->back[2] + eps * q22_of_q30(pre->bb);
+    }
     pb[3] = pm->back[3] + eps * q22_of_q30(ONE_Q30 - pre->t);
     const uint32_t p_cf[3] = {pre->r, pre->g, pre->b};
-    lit_window(d, x, sf, sb, s_cb, st, pm->front, pb, p_cf, pre->t, s0 + r - f, f - s0, false, up, down, m);
+    lit_window(d, x, sf, sb, s_cb, st, pm->front, pb, p_cf, pre->t, s0 + r - f, f - s0, grey, up, down, m);
     return true;
 }
 
@@ -703,24 +741,27 @@ static VF_ALWAYS_INLINE bool sparse_lit_window(const diagonal_t *d, const window
  * from the front, m->down more those from the back (not below 0: the rounding of those may take a little more
  * than the moment holds, where all of it is next to the front). */
 static VF_ALWAYS_INLINE void sparse_lit_next(const diagonal_t *d, const window_t *x, window_moments_t *m,
-                                             size_t up, size_t down)
+                                             size_t up, size_t down, bool grey)
 {
     const uint64_t cu[4] = {x->r, x->g, x->b, x->a}, cd[4] = {x->br, x->bg, x->bb, x->a};
     for (int c = 0; c < 4; c++) {
+        if (grey && (c == 1 || c == 2)) /* grey: the first channel and opacity */
+            continue;
         const uint64_t u = (cu[c] - HALF_Q15_IN_Q60 + HALF_Q22_IN_Q60) >> 38; /* Q.60 with the half, to Q.22 */
         m->up[c] = m->up[c] > u ? m->up[c] - u : 0;
         m->down[c] += (cd[c] - HALF_Q15_IN_Q60 + HALF_Q22_IN_Q60) >> 38;
     }
-    store_lit_moments(d, x, m, false, up, down);
+    store_lit_moments(d, x, m, grey, up, down);
 }
 
 /* The same with invisible intervals (t = 1; any interval with t = 1 changes no bit of a composite, so skipping
  * it is exact, and for transfer functions with narrow peaks that is most of the work). Suffixes are kept for
  * the visible intervals only, k_lo .. k_hi - 1; the suffix from f is the one from the first visible interval at
  * or after f, or the empty run. While the interval a window drops and the one the next adds both have t = 1, the
- * next window's entries are this one's (but for their front-weighted values, which lit works out for each). */
+ * next window's entries are this one's (but for their front-weighted values, which lit works out for each).
+ * grey: as block_dense's, one channel worked out for three (the suffixes' and runs' others are never read). */
 static VF_ALWAYS_INLINE void block_sparse_body(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo,
-                                              uint32_t k_hi, bool lit)
+                                              uint32_t k_hi, bool grey, bool lit)
 {
     if (!VF_LIT_TABLES) /* a build without them: the unlit code alone */
         lit = false;
@@ -734,18 +775,20 @@ static VF_ALWAYS_INLINE void block_sparse_body(const diagonal_t *d, uint32_t s0,
         am = pm = no_moments();
     uint32_t s_front = s0 + r, p_back = s0 + r - 1; /* lit: the interval that joined each last */
     for (; k > k_end; k--)
-        lit ? sparse_add_lit(&acc, &am, iv, visible[k - 1], &s_front, s0 + r - 1 - visible[k - 1], true)
-            : pair_add_front(&acc, iv + visible[k - 1]);
+        lit ? sparse_add_lit(&acc, &am, iv, visible[k - 1], &s_front, s0 + r - 1 - visible[k - 1], true, grey)
+            : pair_add_front(&acc, iv + visible[k - 1], grey);
     for (; k > k_lo; k--) {
-        lit ? sparse_add_lit(&acc, &am, iv, visible[k - 1], &s_front, s0 + r - 1 - visible[k - 1], true)
-            : pair_add_front(&acc, iv + visible[k - 1]);
+        lit ? sparse_add_lit(&acc, &am, iv, visible[k - 1], &s_front, s0 + r - 1 - visible[k - 1], true, grey)
+            : pair_add_front(&acc, iv + visible[k - 1], grey);
         vfi_suffix_t *s = &d->suf[k - 1];
         s->front_q60[0] = ((uint64_t)acc.r << 30) + HALF_Q15_IN_Q60;
-        s->front_q60[1] = ((uint64_t)acc.g << 30) + HALF_Q15_IN_Q60;
-        s->front_q60[2] = ((uint64_t)acc.b << 30) + HALF_Q15_IN_Q60;
         s->back[0] = acc.br;
-        s->back[1] = acc.bg;
-        s->back[2] = acc.bb;
+        if (!grey) {
+            s->front_q60[1] = ((uint64_t)acc.g << 30) + HALF_Q15_IN_Q60;
+            s->front_q60[2] = ((uint64_t)acc.b << 30) + HALF_Q15_IN_Q60;
+            s->back[1] = acc.bg;
+            s->back[2] = acc.bb;
+        }
         s->t = acc.t;
         if (lit)
             d->suf_lit[k - 1] = am;
@@ -763,37 +806,51 @@ static VF_ALWAYS_INLINE void block_sparse_body(const diagonal_t *d, uint32_t s0,
         k = first_visible[f];
         const window_t x = join(k < k_hi ? &d->suf[k] : &none, pre.r, pre.g, pre.b,
                                 ((uint64_t)pre.br << 30) + HALF_Q15_IN_Q60, ((uint64_t)pre.bg << 30) + HALF_Q15_IN_Q60,
-                                ((uint64_t)pre.bb << 30) + HALF_Q15_IN_Q60, pre.t, false);
+                                ((uint64_t)pre.bb << 30) + HALF_Q15_IN_Q60, pre.t, grey);
         store_window(out, q15, up, down, &x);
         window_moments_t wm;
-        const bool seen = lit && sparse_lit_window(d, &x, s0, f, k_hi, &pre, &pm, p_back, up, down, &wm);
+        const bool seen = lit && sparse_lit_window(d, &x, s0, f, k_hi, &pre, &pm, p_back, up, down, &wm, grey);
         for (; f < end && iv[f].t == ONE_Q30 && iv[f + r].t == ONE_Q30; f++) {
             up += n + 1;
             down += n + 1;
             copy_pair(out, up, down, n + 1);
             if (seen)
-                sparse_lit_next(d, &x, &wm, up, down);
+                sparse_lit_next(d, &x, &wm, up, down, grey);
             else if (lit)
                 store_nothing_seen(d->out, up, down);
         }
         if (f == end)
             break;
         if (iv[f + r].t != ONE_Q30)
-            lit ? sparse_add_lit(&pre, &pm, iv, f + r, &p_back, f - s0, false) : pair_add_back(&pre, iv + f + r);
+            lit ? sparse_add_lit(&pre, &pm, iv, f + r, &p_back, f - s0, false, grey)
+                : pair_add_back(&pre, iv + f + r, grey);
         f++;
         up += n + 1;
         down += n + 1;
     }
 }
 
-static void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
+static VF_ALWAYS_INLINE void block_sparse(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
 {
-    block_sparse_body(d, s0, end, k_lo, k_hi, false);
+    block_sparse_body(d, s0, end, k_lo, k_hi, false, false);
 }
 
-static void block_sparse_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
+/* A grey transfer function's sparse block (block_dense_grey's reasons; not in builds without VF_SPECIAL_LOOPS). */
+static VF_ALWAYS_INLINE void block_sparse_grey(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo,
+                                               uint32_t k_hi)
 {
-    block_sparse_body(d, s0, end, k_lo, k_hi, true);
+    block_sparse_body(d, s0, end, k_lo, k_hi, true, false);
+}
+
+static VF_ALWAYS_INLINE void block_sparse_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo, uint32_t k_hi)
+{
+    block_sparse_body(d, s0, end, k_lo, k_hi, false, true);
+}
+
+static VF_ALWAYS_INLINE void block_sparse_grey_lit(const diagonal_t *d, uint32_t s0, uint32_t end, uint32_t k_lo,
+                                                   uint32_t k_hi)
+{
+    block_sparse_body(d, s0, end, k_lo, k_hi, true, true);
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
@@ -921,13 +978,38 @@ void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, ui
     demand->visible_count = list_intervals(cls, scratch, &demand->grey);
 }
 
-void vfi_preint_demand_diagonal(const vfi_demand_t *demand, uint32_t f, uint32_t b)
+/* Entry (f, b)'s block of its diagonal r = |b - f| (build_block): the window lo .. lo+r-1, lo = min(f, b), gives
+ * both (lo, lo+r) and (lo+r, lo), and is in the block from s0 = lo - lo mod r. Only that block's intervals get
+ * their transmittances for pieces of d / r, so a block costs O(r) however long its diagonal: a frame reads few
+ * of a short diagonal's many blocks (docs/performance.md). */
+void vfi_preint_demand_entry(const vfi_demand_t *demand, uint32_t f, uint32_t b)
 {
-    if (vfi_table_out_lit(demand->out))
-        build_diagonal_lit(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->grey,
-                           demand->out, f > b ? f - b : b - f);
-    else
-        build_diagonal(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->grey,
-                       demand->out, f > b ? f - b : b - f);
+    const uint32_t lo = f < b ? f : b, r = f < b ? b - f : f - b;
+    if (r == 0) /* the diagonal itself: built at begin */
+        return;
+    const vfi_table_scratch_t *scratch = demand->scratch;
+    diagonal_t d = diagonal(scratch, demand->out, demand->cls->n, r);
+    const uint32_t s0 = lo - lo % r;
+    const uint32_t k_lo = scratch->first_visible[s0], k_hi = scratch->first_visible[block_end(&d, s0) + r];
+    const uint64_t length_q28 = piece_length_q28(demand->slab_q16, r);
+    if (VF_LIT_TABLES && vfi_table_out_lit(demand->out)) {
+        transmittances_listed(scratch, k_lo, k_hi, length_q28, true);
+        d.suf_lit = scratch->suffix_lit;
+        d.recip = vfi_udiv64((UINT64_C(1) << 40) + r / 2, r);
+        build_block(&d, s0, demand->grey, true);
+    } else {
+        transmittances_listed(scratch, k_lo, k_hi, length_q28, false);
+        build_block(&d, s0, demand->grey, false);
+    }
+}
+
+/* The listed intervals k_lo .. k_hi - 1's transmittances (lit: and alpha t(x)) for pieces of length_q28. */
+static VF_ALWAYS_INLINE void transmittances_listed(const vfi_table_scratch_t *scratch, uint32_t k_lo,
+                                                   uint32_t k_hi, uint64_t length_q28, bool lit)
+{
+    const uint32_t *exp_tables = vfi_exp_neg_tables();
+    vfi_interval_t *iv = scratch->interval + 1;
+    for (uint32_t k = k_lo; k < k_hi; k++)
+        transmittance(exp_tables, &iv[scratch->visible[k]], length_q28, lit);
 }
 #endif

@@ -12,6 +12,9 @@
 #define ONE_Q30 (INT64_C(1) << 30)
 
 static int64_t dot_q30(const int32_t n[3], const int64_t w[3]);
+static VF_ALWAYS_INLINE void shade_codes(const int32_t *unit, uint32_t count, uint64_t *shade, const int64_t view_z[3],
+                                         int64_t (*light_w)[3], int64_t (*half_w)[3], uint32_t lights,
+                                         const vf_lighting_t *lighting);
 static uint64_t power_q30(uint64_t x, uint32_t e);
 static uint32_t unorm16_q30(uint16_t v);
 static uint32_t q30_to_q14(uint64_t v);
@@ -44,23 +47,10 @@ void vfi_shade_table(int32_t r[3][3], const vf_lighting_t *lighting, const int32
         }
     }
     const int64_t view_z[3] = {r[2][0], r[2][1], r[2][2]}; /* the eye's z axis (into the screen), in world axes */
-    const uint64_t ka = unorm16_q30(lighting->ka), kd = unorm16_q30(lighting->kd), ks = unorm16_q30(lighting->ks);
-    const uint32_t ambient = q30_to_q14(ka);
-    for (uint32_t code = 0; code + 1 < count; code++) {
-        const int32_t *n = unit + (size_t)code * 3;
-        /* two-sided: a normal facing away from the viewer (m_z > 0) is turned round */
-        const int64_t side = dot_q30(n, view_z) > 0 ? -1 : 1;
-        uint64_t diffuse = 0, specular = 0; /* Q.30 sums over the lights */
-        for (uint32_t l = 0; l < lights; l++) {
-            const int64_t d = side * dot_q30(n, light_w[l]), h = side * dot_q30(n, half_w[l]);
-            diffuse += d > 0 ? (uint64_t)d : 0;
-            specular += h > 0 ? power_q30((uint64_t)(h < ONE_Q30 ? h : ONE_Q30), lighting->shininess) : 0;
-        }
-        const uint32_t ld = q30_to_q14(ka + ((kd * diffuse + (UINT64_C(1) << 29)) >> 30));
-        const uint32_t ls = q30_to_q14((ks * specular + (UINT64_C(1) << 29)) >> 30);
-        shade[code] = ld | (uint64_t)ls << 32;
-    }
-    shade[count - 1] = ambient; /* no normal: ambient light alone */
+    if (lights == 1) /* the default: the lights' loop gone */
+        shade_codes(unit, count, shade, view_z, light_w, half_w, 1, lighting);
+    else
+        shade_codes(unit, count, shade, view_z, light_w, half_w, lights, lighting);
 }
 
 void vfi_gradient_ramp(uint8_t lo, uint8_t hi, uint16_t factor[256])
@@ -75,6 +65,31 @@ void vfi_gradient_ramp(uint8_t lo, uint8_t hi, uint16_t factor[256])
     }
 }
 
+/* Every code's entry, and the last code's (no normal): ambient light alone. Inline, so that a single light is a
+ * constant count. */
+static VF_ALWAYS_INLINE void shade_codes(const int32_t *unit, uint32_t count, uint64_t *shade, const int64_t view_z[3],
+                                         int64_t (*light_w)[3], int64_t (*half_w)[3], uint32_t lights,
+                                         const vf_lighting_t *lighting)
+{
+    const uint64_t ka = unorm16_q30(lighting->ka), kd = unorm16_q30(lighting->kd), ks = unorm16_q30(lighting->ks);
+    const uint32_t ambient = q30_to_q14(ka), shininess = lighting->shininess;
+    for (uint32_t code = 0; code + 1 < count; code++) {
+        const int32_t *n = unit + (size_t)code * 3;
+        /* two-sided: a normal facing away from the viewer (m_z > 0) is turned round */
+        const int64_t side = dot_q30(n, view_z) > 0 ? -1 : 1;
+        uint64_t diffuse = 0, specular = 0; /* Q.30 sums over the lights */
+        for (uint32_t l = 0; l < lights; l++) {
+            const int64_t d = side * dot_q30(n, light_w[l]), h = side * dot_q30(n, half_w[l]);
+            diffuse += d > 0 ? (uint64_t)d : 0;
+            specular += h > 0 ? power_q30((uint64_t)(h < ONE_Q30 ? h : ONE_Q30), shininess) : 0;
+        }
+        const uint32_t ld = q30_to_q14(ka + ((kd * diffuse + (UINT64_C(1) << 29)) >> 30));
+        const uint32_t ls = q30_to_q14((ks * specular + (UINT64_C(1) << 29)) >> 30);
+        shade[code] = ld | (uint64_t)ls << 32;
+    }
+    shade[count - 1] = ambient;
+}
+
 /* n . w, both Q1.30 (|n|, |w| at most about 1), rounded to Q1.30 */
 static int64_t dot_q30(const int32_t n[3], const int64_t w[3])
 {
@@ -82,15 +97,20 @@ static int64_t dot_q30(const int32_t n[3], const int64_t w[3])
     return (sum + (INT64_C(1) << 29)) >> 30;
 }
 
-/* x^e for x in [0, 1], Q.30, by squaring: about 2 log2(e) products, each rounded */
+/* x^e for x in [0, 1], Q.30, by squaring: x^(2^j) for each bit j of e, rounded, multiplied into the result from
+ * the lowest bit up, each product rounded. The result starts as the lowest bit's power itself, which is 1.0 times it
+ * rounded (exact: x 2^30 + 2^29 >> 30 = x), and nothing is squared past the highest bit. */
 static uint64_t power_q30(uint64_t x, uint32_t e)
 {
-    uint64_t result = (uint64_t)ONE_Q30;
-    while (e) {
+    if (e == 0)
+        return (uint64_t)ONE_Q30;
+    for (; !(e & 1u); e >>= 1)
+        x = (x * x + (UINT64_C(1) << 29)) >> 30;
+    uint64_t result = x;
+    for (e >>= 1; e; e >>= 1) {
+        x = (x * x + (UINT64_C(1) << 29)) >> 30;
         if (e & 1u)
             result = (result * x + (UINT64_C(1) << 29)) >> 30;
-        x = (x * x + (UINT64_C(1) << 29)) >> 30;
-        e >>= 1;
     }
     return result;
 }

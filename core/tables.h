@@ -190,9 +190,9 @@ void vfi_preint_table_part(const vfi_classify_t *cls, uint32_t slab_q16, const v
                            vfi_table_out_t out, uint32_t part, uint32_t parts);
 /* A 2D table built as compositing reads it (a frame composited on one thread: vf_frame_t.one_thread): begin
  * builds the diagonal itself, lists the intervals and marks every other entry unbuilt, colour VFI_UNBUILT_Q15 and
- * opacity 0, which no entry has (values are at most 1.0, 32768). A reader that meets such an entry asks for the
- * diagonal |b - f| of entry (f, b), which vfi_preint_demand_diagonal builds whole, both triangles, to the bit as
- * vfi_preint_table_part would. 16-bit tables (out.q15) only. With lit outputs, a diagonal's lit entries are
+ * opacity 0, which no entry has (values are at most 1.0, 32768). A reader that meets such an entry (f, b) asks for
+ * it, and vfi_preint_demand_entry builds the block of its diagonal |b - f| that holds it (at most |b - f| entries
+ * in each triangle, the ones that share its runs), to the bit as vfi_preint_table_part would. 16-bit tables (out.q15) only. With lit outputs, a diagonal's lit entries are
  * written with its entries, and hold nothing before (the marks are in out.q15 alone); scratch from
  * vfi_table_scratch_alloc_lit. */
 #define VFI_UNBUILT_Q15 0xFFFFu
@@ -205,7 +205,7 @@ typedef struct vfi_demand {
 } vfi_demand_t;
 void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, uint32_t slab_q16,
                              const vfi_table_scratch_t *scratch, vfi_table_out_t out);
-void vfi_preint_demand_diagonal(const vfi_demand_t *demand, uint32_t f, uint32_t b);
+void vfi_preint_demand_entry(const vfi_demand_t *demand, uint32_t f, uint32_t b);
 
 static inline void vfi_preint_table_incremental(const vfi_classify_t *cls, uint32_t slab_q16,
                                                 const vfi_table_scratch_t *scratch, vfi_table_out_t out)

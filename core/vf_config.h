@@ -36,7 +36,7 @@
 #endif
 
 /* Tables built as they are read: a frame composited on one thread (vf_frame_t.one_thread) in the default
- * preint1 path builds only the diagonals of the 2D table its segments use. 0 leaves it out (one_thread then changes nothing). */
+ * preint1 path builds only the blocks of the 2D table's diagonals its segments use. 0 leaves it out (one_thread then changes nothing). */
 #ifndef VF_TABLE_ON_DEMAND
 #define VF_TABLE_ON_DEMAND 1
 #endif

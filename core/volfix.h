@@ -306,8 +306,8 @@ typedef struct vf_frame {
                              * threads with vf_renderer_build_table_part before compositing. The table is the
                              * same, to the bit, in any number of parts. */
     bool one_thread;        /* every band of this frame is composited on the calling thread, one after another:
-                             * then a stale 2D table is built as compositing first reads each of its diagonals,
-                             * only the diagonals the frame uses (the default preint1 path; otherwise, and in
+                             * then a stale 2D table is built as compositing first reads each block of its
+                             * diagonals, only the blocks the frame uses (the default preint1 path; otherwise, and in
                              * builds without VF_TABLE_ON_DEMAND, as begin would). The same pixels either way. */
 } vf_frame_t;
 

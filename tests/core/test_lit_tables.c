@@ -326,8 +326,8 @@ static void lit_grey_twin(void)
 /* ---- parts and diagonals on demand ------------------------------------------------------------------- */
 
 /* The incremental builder in 1, 2, 3 and 7 parts (run in a shuffled order, each with its own scratch), and
- * diagonal by diagonal as compositing would ask for them (random entries, some asked twice): main and lit tables
- * equal to the whole build's, to the bit. */
+ * block by block as compositing would ask for them (random entries, some asked twice): main and lit tables equal
+ * to the whole build's, to the bit; an entry asked for is built, and its diagonal's other blocks are not. */
 static void lit_parts_and_demand(void)
 {
     const uint32_t sizes[] = {2, 7, 64, 255, 256};
@@ -373,14 +373,25 @@ static void lit_parts_and_demand(void)
             for (uint32_t asked = 0; asked < 3 * n; asked++) {
                 const uint32_t f = rnd(n), b = rnd(n);
                 const uint16_t *e = main_b + ((size_t)f * n + b) * 4;
-                if (f != b && e[0] == VFI_UNBUILT_Q15 && e[3] == 0)
-                    vfi_preint_demand_diagonal(&demand, f, b);
+                if (f != b && e[0] == VFI_UNBUILT_Q15 && e[3] == 0) {
+                    const uint32_t r = f < b ? b - f : f - b, lo = f < b ? f : b, s0 = lo - lo % r;
+                    /* the first entry of the block after this one's, if this block is its diagonal's first built */
+                    const uint32_t next = s0 + r + r < n ? s0 + r : 0;
+                    const bool next_unbuilt = next && main_b[((size_t)next * n + next + r) * 4] == VFI_UNBUILT_Q15;
+                    vfi_preint_demand_entry(&demand, f, b);
+                    CHECK(!(e[0] == VFI_UNBUILT_Q15 && e[3] == 0));
+                    CHECK(!(main_b[((size_t)(lo + r) * n + lo) * 4] == VFI_UNBUILT_Q15 &&
+                            main_b[((size_t)(lo + r) * n + lo) * 4 + 3] == 0));
+                    if (next_unbuilt)
+                        CHECK_MSG(main_b[((size_t)next * n + next + r) * 4] == VFI_UNBUILT_Q15,
+                                  "N %u: entry (%u, %u) built another block too", n, f, b);
+                }
                 else if (rnd(8) == 0 && f != b)
-                    vfi_preint_demand_diagonal(&demand, f, b); /* again: the same entries */
+                    vfi_preint_demand_entry(&demand, f, b); /* again: the same entries */
             }
-            for (uint32_t r = 1; r < n; r++) /* the rest, as a frame reading everything would */
-                if (main_b[(size_t)r * 4] == VFI_UNBUILT_Q15 && main_b[(size_t)r * 4 + 3] == 0)
-                    vfi_preint_demand_diagonal(&demand, 0, r);
+            for (uint32_t k = 0; k < n * n; k++) /* the rest, as a frame reading everything would */
+                if (main_b[(size_t)k * 4] == VFI_UNBUILT_Q15 && main_b[(size_t)k * 4 + 3] == 0)
+                    vfi_preint_demand_entry(&demand, k / n, k % n);
             CHECK_MSG(memcmp(main_a, main_b, values * sizeof main_a[0]) == 0, "N %u on demand: main tables differ", n);
             CHECK_MSG(memcmp(lit_a, lit_b, values * sizeof lit_a[0]) == 0, "N %u on demand: lit tables differ", n);
         }
