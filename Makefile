@@ -509,8 +509,9 @@ MCU_OPT       := -Os -g -ffunction-sections -fdata-sections -fno-tree-loop-distr
 # The firmware's core leaves out what a 256 KB board does not use (vf_config.h): partial slabs, more than one
 # ray per voxel column, the table built in parts on threads or as compositing reads it, view tables (the lut
 # then corrects each segment), the brute-force table builder (the tests' oracle) and the front-weighted (lit)
-# tables (4.8 KB; the firmware renders without lighting) and order 2 (preint2: docs/performance.md gives its
-# code and the RAM of its table), which keeps the core within
+# tables (4.8 KB; the firmware renders without lighting), order 2 (preint2: docs/performance.md gives its
+# code and the RAM of its table) and renderers over prebuilt storage (boards/mps2-an386/README.md, a 64^3 volume
+# in 256 KB: those firmwares build with -DVF_PREBUILT=1 -DVF_BUILD_SLICES=0), which keeps the core within
 # the 24 KB code budget; and its loops look no entry up ahead: on a core without caches that would only add
 # work, 17% more compositing time (qemu's instruction count: 79,819 ticks against 68,503).
 MCU_FEATURES  ?= -DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1 -DVF_MAX_TABLE_PARTS=1 -DVF_VIEW_TABLE=0 -DVF_TABLE_ON_DEMAND=0 \
