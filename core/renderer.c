@@ -37,7 +37,6 @@ static inline bool lit_general(const vf_renderer_t *r)
 static inline vfi_table_out_t table2_out(const vf_renderer_t *r);
 #endif
 static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol, bool prebuilt);
-static vf_status_t check_prebuilt(const vf_params_t *p, const vf_volume_t *vol, const vf_prebuilt_t *pre);
 static size_t reserved_intermediate(const vf_volume_t *vol, uint32_t rays, const vf_prebuilt_t *pre, uint32_t *max_w,
                                     uint32_t *max_ni);
 static size_t order2_bytes(const vf_params_t *p);
@@ -120,7 +119,7 @@ static vf_status_t renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, 
     if (s == VF_OK && (pre ? !VF_PREBUILT : !VF_BUILD_SLICES))
         s = VF_ERR_UNSUPPORTED;
     if (VF_PREBUILT && s == VF_OK && pre)
-        s = check_prebuilt(p, vol, pre);
+        s = vfi_prebuilt_check(p, vol, pre);
     if (s != VF_OK)
         return s;
     uint32_t w, ni;
@@ -238,39 +237,6 @@ vf_status_t vf_renderer_create_prebuilt(vf_renderer_t **out, const vf_params_t *
     if (out)
         *out = NULL;
     return pre ? renderer_create(out, p, vol, pre, arena) : VF_ERR_NULL;
-}
-
-vf_status_t vf_renderer_export(const vf_renderer_t *r, vf_prebuilt_t *pre)
-{
-    if (!r || !pre)
-        return VF_ERR_NULL;
-    if (!r->have_window || !r->have_tf || !r->have_runs)
-        return VF_ERR_STATE;
-    vfi_zero(pre, sizeof *pre);
-    pre->window = r->window;
-    for (int a = 0; a < 3; a++) {
-        const vfi_layout_t *l = &r->layout[a];
-        pre->slices[a] = r->slices[a];
-        pre->slice_count[a] = vfi_slices_bytes(r->volume.dims, a);
-        pre->row_start[a] = r->runs[a].row_start;
-        pre->row_count[a] = (size_t)(l->nk - 1) * l->nj + 1;
-        pre->pairs[a] = r->runs[a].pairs;
-        pre->pair_count[a] = r->runs[a].row_start[pre->row_count[a] - 1];
-#if VF_LIGHTING
-        if (r->params.lighting) {
-            pre->codes[a] = r->codes[a];
-            pre->magnitudes[a] = r->magnitudes[a];
-        }
-#endif
-    }
-#if VF_LIGHTING
-    if (r->params.lighting) {
-        pre->unit = r->unit;
-        pre->unit_count = 3 * (size_t)r->code_count;
-    }
-#endif
-    pre->visible_from = r->cls.visible_from;
-    return VF_OK;
 }
 
 vf_status_t vf_renderer_set_window(vf_renderer_t *r, vf_window_t window)
@@ -650,29 +616,6 @@ static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol, bool p
     return bytes + vfi_arena_block(sizeof(uint64_t) * codes) + vfi_arena_block(sizeof(uint16_t) * 256);
 }
 
-/* Prebuilt storage fits these parameters and this volume: every array there and of its size (the lighting's
- * exactly when the parameters light, the run lists' when visible_from is given), the run lists whole. */
-static vf_status_t check_prebuilt(const vf_params_t *p, const vf_volume_t *vol, const vf_prebuilt_t *pre)
-{
-    if (pre->window.lo == pre->window.hi)
-        return VF_ERR_WINDOW;
-    const bool lit = VF_LIGHTING && p->lighting, runs = pre->visible_from != NULL;
-    for (int a = 0; a < 3; a++) {
-        vfi_layout_t l;
-        vfi_layout(vol->dims, a, &l);
-        if (!pre->slices[a] || (lit && (!pre->codes[a] || !pre->magnitudes[a])) ||
-            (runs && (!pre->row_start[a] || !pre->pairs[a])))
-            return VF_ERR_NULL;
-        if (pre->slice_count[a] != vfi_slices_bytes(vol->dims, a) || (!lit && (pre->codes[a] || pre->magnitudes[a])) ||
-            (runs && !vfi_runs_valid(pre->row_start[a], pre->row_count[a], pre->pairs[a], pre->pair_count[a], &l)))
-            return VF_ERR_ARG;
-    }
-    if (lit && !pre->unit)
-        return VF_ERR_NULL;
-    if (lit ? pre->unit_count != 3 * (size_t)vfi_normal_code_count(vfi_normal_levels(p->normal_bits)) : pre->unit != NULL)
-        return VF_ERR_ARG;
-    return VF_OK;
-}
 
 #if VF_LIGHTING
 /* The lighting's memory, the normals made from the volume, and the default lighting. False when short. */
@@ -788,21 +731,11 @@ static vf_status_t encode_runs(vf_renderer_t *r)
     vf_arena_t *arena = r->arena;
     r->have_runs = false;
     vfi_arena_rewind(arena, r->runs_mark);
-    if (is_prebuilt(r) && r->storage->visible_from) { /* the prebuilt run lists, if of this visibility */
-        bool same = true;
-        for (int v = 0; v < 256; v++)
-            same = same && r->storage->visible_from[v] == r->cls.visible_from[v];
-        for (int a = 0; a < 3 && same; a++) {
-            r->runs[a].row_start = r->storage->row_start[a];
-            r->runs[a].pairs = r->storage->pairs[a];
-            r->runs[a].nj = r->layout[a].nj;
-        }
-        if (same) {
-            r->needed = r->runs_mark + VFI_ALIGN;
-            r->memory.runs = 0;
-            r->have_runs = true;
-            return VF_OK;
-        }
+    if (is_prebuilt(r) && vfi_prebuilt_adopt_runs(r)) { /* the prebuilt run lists are of this visibility */
+        r->needed = r->runs_mark + VFI_ALIGN;
+        r->memory.runs = 0;
+        r->have_runs = true;
+        return VF_OK;
     }
     /* One pass per axis, straight into the arena's free space; only when that is too small are the remaining
      * axes counted, to say how big an arena would do (vf_renderer_needed_bytes). */

@@ -133,6 +133,13 @@ static inline bool vfi_lit(const vf_renderer_t *r)
 #endif
 }
 
+/* prebuilt.c: whether prebuilt storage fits these parameters and this volume (every array there and of its size,
+ * the lighting's exactly when the parameters light, the run lists' when visible_from is given, each run list
+ * whole; VF_ERR_NULL or VF_ERR_ARG); and, for a renderer over it with its transfer function classified, whether
+ * the prebuilt run lists are of that visibility, then taken as its own. */
+vf_status_t vfi_prebuilt_check(const vf_params_t *p, const vf_volume_t *vol, const vf_prebuilt_t *pre);
+bool vfi_prebuilt_adopt_runs(vf_renderer_t *r);
+
 /* composite.c */
 vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes);
 size_t vfi_band_scratch_bytes(const vf_renderer_t *r, uint32_t band_rows);
