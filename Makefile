@@ -500,6 +500,8 @@ MCU_CROSS     ?= arm-none-eabi-
 MCU_SCENE     ?= $(VOLFIX_DATA)/bucky.nhdr --size 64x64 --format rgb565 --mode preint1 --preset ramp --view 30,20
 MCU_BAND_ROWS ?= 8
 MCU_GEN_OPTS  ?=
+# the stack the firmware reserves (bytes; it reports how much a frame touched)
+MCU_STACK     ?= 16384
 MCU_DIR       := boards/mps2-an386
 MCU_ARCH      := -mcpu=cortex-m4 -mthumb -mfloat-abi=soft
 MCU_OPT       := -Os -g -ffunction-sections -fdata-sections -fno-tree-loop-distribute-patterns
@@ -507,19 +509,20 @@ MCU_OPT       := -Os -g -ffunction-sections -fdata-sections -fno-tree-loop-distr
 # The firmware's core leaves out what a 256 KB board does not use (vf_config.h): partial slabs, more than one
 # ray per voxel column, the table built in parts on threads or as compositing reads it, view tables (the lut
 # then corrects each segment), the brute-force table builder (the tests' oracle) and the front-weighted (lit)
-# tables (4.8 KB; the firmware renders without lighting) and order 2 (preint2: docs/performance.md gives its
-# code and the RAM of its table), which keeps the core within
+# tables (4.8 KB; the firmware renders without lighting), order 2 (preint2: docs/performance.md gives its
+# code and the RAM of its table) and renderers over prebuilt storage (boards/mps2-an386/README.md, a 64^3 volume
+# in 256 KB: those firmwares build with -DVF_PREBUILT=1 -DVF_BUILD_SLICES=0), which keeps the core within
 # the 24 KB code budget; and its loops look no entry up ahead: on a core without caches that would only add
 # work, 17% more compositing time (qemu's instruction count: 79,819 ticks against 68,503).
 MCU_FEATURES  ?= -DVF_PARTIAL_SLABS=0 -DVF_MAX_RAYS=1 -DVF_MAX_TABLE_PARTS=1 -DVF_VIEW_TABLE=0 -DVF_TABLE_ON_DEMAND=0 \
-                 -DVF_TABLE_ORACLE=0 -DVF_SPECIAL_LOOPS=0 -DVF_LOOK_AHEAD=0 -DVF_LIGHTING=0 -DVF_ORDER2=0
+                 -DVF_TABLE_ORACLE=0 -DVF_SPECIAL_LOOPS=0 -DVF_LOOK_AHEAD=0 -DVF_LIGHTING=0 -DVF_ORDER2=0 -DVF_PREBUILT=0
 MCU_CORE_CFLAGS := -std=c99 -ffreestanding -fno-builtin -Wall -Wextra -Wpedantic -Werror -Wshadow \
                    -Wstrict-prototypes -Wmissing-prototypes -Wconversion -Wno-sign-conversion $(MCU_ARCH) $(MCU_OPT) \
                    $(MCU_FEATURES)
 MCU_FW_CFLAGS   := -std=c99 -ffreestanding -fno-builtin -Wall -Wextra -Werror -Wshadow $(MCU_ARCH) $(MCU_OPT) \
                    -Icore -I$(MCU_BUILD)
 MCU_CORE_OBJ  := $(CORE_SRC:%.c=$(MCU_BUILD)/%.o)
-MCU_FW_OBJ    := $(MCU_BUILD)/fw/startup.o $(MCU_BUILD)/fw/semihost.o $(MCU_BUILD)/fw/main.o
+MCU_FW_OBJ    := $(MCU_BUILD)/fw/startup.o $(MCU_BUILD)/fw/semihost.o $(MCU_BUILD)/fw/main.o $(MCU_BUILD)/fw/scene_data.o
 MCU_ELF       := $(MCU_BUILD)/fw.elf
 # -icount shift=0: the guest's clock advances one nanosecond per instruction, so the firmware's timer ticks
 # (25 MHz) count instructions / 40, the same on any host
@@ -541,7 +544,7 @@ mcu-firmware: $(MCU_ELF)
 # stamp, so that `make mcu MCU_FEATURES=...` rebuilds the core rather than linking objects built with the old
 # features, and a new MCU_SCENE regenerates the scene's header.
 MCU_CORE_TEXT  := $(MCU_CROSS)gcc $(MCU_CORE_CFLAGS)
-MCU_FW_TEXT    := $(MCU_CROSS)gcc $(MCU_FW_CFLAGS)
+MCU_FW_TEXT    := $(MCU_CROSS)gcc $(MCU_FW_CFLAGS) stack $(MCU_STACK)
 MCU_SCENE_TEXT := $(MCU_SCENE) --band-rows $(MCU_BAND_ROWS) $(MCU_GEN_OPTS)
 $(MCU_BUILD)/core.flags: FORCE
 	$(call write_if_changed,$(call quote,$(MCU_CORE_TEXT)))
@@ -561,8 +564,14 @@ $(MCU_BUILD)/gen_scene: $(MCU_DIR)/gen_scene.c $(LIBSIM) $(LIBPORT) $(LIBVOLFIX)
 	@mkdir -p $(@D)
 	$(CC) $(HOST_CFLAGS) $(DEPFLAGS) -o $@ $< $(LIBSIM) $(LIBPORT) $(LIBVOLFIX) $(LDFLAGS) $(PORT_LIBS)
 
+# gen_scene writes scene_data.S beside the header (with --prebuilt in MCU_GEN_OPTS, the arrays it .incbin's from
+# scene_data.bin; else empty)
 $(MCU_BUILD)/scene.h: $(MCU_BUILD)/gen_scene $(MCU_BUILD)/scene.args
 	$(MCU_BUILD)/gen_scene $(MCU_SCENE) --band-rows $(MCU_BAND_ROWS) $(MCU_GEN_OPTS) -o $@
+$(MCU_BUILD)/scene_data.S: $(MCU_BUILD)/scene.h
+$(MCU_BUILD)/fw/scene_data.o: $(MCU_BUILD)/scene_data.S
+	@mkdir -p $(@D)
+	$(MCU_CROSS)gcc $(MCU_ARCH) -c $< -o $@
 
 $(MCU_BUILD)/fw/%.o: $(MCU_DIR)/%.c $(MCU_BUILD)/scene.h $(MCU_BUILD)/fw.flags
 	@mkdir -p $(@D)
@@ -570,8 +579,8 @@ $(MCU_BUILD)/fw/%.o: $(MCU_DIR)/%.c $(MCU_BUILD)/scene.h $(MCU_BUILD)/fw.flags
 
 # -nostdlib: nothing from a C library, so a libc call anywhere (a memset the compiler made up included) fails
 # the link; libgcc only for the 64-bit division helpers (__aeabi_uldivmod, __aeabi_ldivmod).
-$(MCU_ELF): $(MCU_FW_OBJ) $(MCU_BUILD)/libvolfix.a $(MCU_DIR)/mps2-an386.ld
-	$(MCU_CROSS)gcc $(MCU_ARCH) -nostdlib -T $(MCU_DIR)/mps2-an386.ld -Wl,--gc-sections \
+$(MCU_ELF): $(MCU_FW_OBJ) $(MCU_BUILD)/libvolfix.a $(MCU_DIR)/mps2-an386.ld $(MCU_BUILD)/fw.flags
+	$(MCU_CROSS)gcc $(MCU_ARCH) -nostdlib -T $(MCU_DIR)/mps2-an386.ld -Wl,--gc-sections -Wl,--defsym=STACK_SIZE=$(MCU_STACK) \
 	    -Wl,-Map=$(MCU_BUILD)/fw.map -o $@ $(MCU_FW_OBJ) $(MCU_BUILD)/libvolfix.a -lgcc
 # ---- end of make mcu ----------------------------------------------------------------------------------------
 

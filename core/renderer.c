@@ -36,8 +36,16 @@ static inline bool lit_general(const vf_renderer_t *r)
 #if VF_ORDER2
 static inline vfi_table_out_t table2_out(const vf_renderer_t *r);
 #endif
-static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol);
+static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol, bool prebuilt);
+static size_t reserved_intermediate(const vf_volume_t *vol, uint32_t rays, const vf_prebuilt_t *pre, uint32_t *max_w,
+                                    uint32_t *max_ni);
 static size_t order2_bytes(const vf_params_t *p);
+
+/* Whether the renderer is over prebuilt storage (constant false in builds without VF_PREBUILT). */
+static inline bool is_prebuilt(const vf_renderer_t *r)
+{
+    return VF_PREBUILT && r->prebuilt;
+}
 
 /* The modes with a 2D table: preint1, and preint2 (its last slab when the slab count is odd, and its pieces). */
 static bool has_2d_table(const vf_params_t *p)
@@ -99,13 +107,19 @@ void vf_lighting_default(vf_lighting_t *l)
     l->shininess = 10;
 }
 
-vf_status_t vf_renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, size_t *bytes)
+/* The arena bytes of a renderer, over prebuilt storage (pre) or not (NULL): what create reserves. */
+static vf_status_t renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, const vf_prebuilt_t *pre,
+                                  size_t *bytes)
 {
     if (!p || !vol || !bytes)
         return VF_ERR_NULL;
     vf_status_t s = check_params(p);
     if (s == VF_OK)
         s = check_volume(vol);
+    if (s == VF_OK && (pre ? !VF_PREBUILT : !VF_BUILD_SLICES))
+        s = VF_ERR_UNSUPPORTED;
+    if (VF_PREBUILT && s == VF_OK && pre)
+        s = vfi_prebuilt_check(p, vol, pre);
     if (s != VF_OK)
         return s;
     uint32_t w, ni;
@@ -113,22 +127,35 @@ vf_status_t vf_renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, size
         return VF_ERR_INTERMEDIATE;
     const uint32_t n = p->table_size;
     size_t total = VFI_ALIGN + vfi_arena_block(sizeof(vf_renderer_t));
-    for (int a = 0; a < 3; a++)
+    for (int a = 0; a < 3 && !pre; a++)
         total += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
-    total += vfi_classify_bytes(n) + table_bytes(p) + lit_table_bytes(p) + normals_bytes(p, vol) + order2_bytes(p);
-    total += vfi_arena_block(sizeof(uint16_t) * 4 * intermediate_pixels(vol->dims, p->rays, &w, &ni)) +
+    total += vfi_classify_bytes(n) + table_bytes(p) + lit_table_bytes(p) + normals_bytes(p, vol, pre != NULL) +
+             order2_bytes(p);
+    total += vfi_arena_block(sizeof(uint16_t) * 4 * reserved_intermediate(vol, p->rays, pre, &w, &ni)) +
              extent_bytes(vol->dims, p->rays);
     *bytes = total;
     return VF_OK;
 }
 
-vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const vf_volume_t *vol, vf_arena_t *arena)
+vf_status_t vf_renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, size_t *bytes)
+{
+    return renderer_bytes(p, vol, NULL, bytes);
+}
+
+vf_status_t vf_renderer_prebuilt_bytes(const vf_params_t *p, const vf_volume_t *vol, const vf_prebuilt_t *pre,
+                                       size_t *bytes)
+{
+    return pre ? renderer_bytes(p, vol, pre, bytes) : VF_ERR_NULL;
+}
+
+static vf_status_t renderer_create(vf_renderer_t **out, const vf_params_t *p, const vf_volume_t *vol,
+                                   const vf_prebuilt_t *pre, vf_arena_t *arena)
 {
     if (!out || !p || !vol || !arena)
         return VF_ERR_NULL;
     *out = NULL;
     size_t needed;
-    vf_status_t s = vf_renderer_bytes(p, vol, &needed);
+    vf_status_t s = renderer_bytes(p, vol, pre, &needed);
     if (s != VF_OK)
         return s;
     vf_renderer_t *r = vfi_arena_alloc(arena, sizeof *r);
@@ -140,10 +167,13 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     r->volume = *vol;
     r->arena = arena;
     r->needed = needed;
+    r->prebuilt = VF_PREBUILT && pre != NULL;
+    r->storage = pre;
 
     for (int a = 0; a < 3; a++) {
         vfi_layout(vol->dims, a, &r->layout[a]);
-        r->slices[a] = vfi_arena_alloc(arena, vfi_slices_bytes(vol->dims, a));
+        r->built_slices[a] = pre ? NULL : vfi_arena_alloc(arena, vfi_slices_bytes(vol->dims, a));
+        r->slices[a] = pre ? pre->slices[a] : r->built_slices[a];
     }
     const uint32_t n = p->table_size;
     const bool lut = p->correction == VF_CORRECTION_LUT;
@@ -158,7 +188,7 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     }
     if (has_view_table(p))
         r->view_table = vfi_arena_alloc(arena, table_entries(p) * 4 * sizeof(uint16_t));
-    r->intermediate_max = intermediate_pixels(vol->dims, p->rays, &r->max_int_w, &r->max_ni);
+    r->intermediate_max = reserved_intermediate(vol, p->rays, pre, &r->max_int_w, &r->max_ni);
     r->intermediate = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * r->intermediate_max);
     r->row_extent = VF_SPECIAL_LOOPS ? vfi_arena_alloc(arena, extent_bytes(vol->dims, p->rays)) : NULL;
     if (s != VF_OK || (VF_SPECIAL_LOOPS && !r->row_extent) || !r->slices[0] || !r->slices[1] || !r->slices[2] || !r->table ||
@@ -183,17 +213,30 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     r->runs_mark = arena->used;
 
     r->memory.renderer = vfi_arena_block(sizeof *r);
-    for (int a = 0; a < 3; a++)
+    for (int a = 0; a < 3 && !pre; a++)
         r->memory.slices += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
     r->memory.classify = vfi_classify_bytes(n);
     r->memory.tables = table_bytes(p);
     r->memory.intermediate = vfi_arena_block(sizeof(uint16_t) * 4 * r->intermediate_max) +
                              extent_bytes(vol->dims, p->rays);
     r->memory.tables += lit_table_bytes(p);
-    r->memory.normals = normals_bytes(p, vol);
+    r->memory.normals = normals_bytes(p, vol, pre != NULL);
     r->memory.order2 = order2_bytes(p);
     *out = r;
     return VF_OK;
+}
+
+vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const vf_volume_t *vol, vf_arena_t *arena)
+{
+    return renderer_create(out, p, vol, NULL, arena);
+}
+
+vf_status_t vf_renderer_create_prebuilt(vf_renderer_t **out, const vf_params_t *p, const vf_volume_t *vol,
+                                        const vf_prebuilt_t *pre, vf_arena_t *arena)
+{
+    if (out)
+        *out = NULL;
+    return pre ? renderer_create(out, p, vol, pre, arena) : VF_ERR_NULL;
 }
 
 vf_status_t vf_renderer_set_window(vf_renderer_t *r, vf_window_t window)
@@ -202,8 +245,12 @@ vf_status_t vf_renderer_set_window(vf_renderer_t *r, vf_window_t window)
         return VF_ERR_NULL;
     if (window.lo == window.hi)
         return VF_ERR_WINDOW;
+    if (is_prebuilt(r) && (window.lo != r->storage->window.lo || window.hi != r->storage->window.hi))
+        return VF_ERR_UNSUPPORTED; /* read-only slices of another window: the renderer's slices stand */
     r->have_frame = false; /* a frame begun before must not composite half old, half new data */
-    vfi_slices_build(&r->volume, window, r->slices);
+    if (VF_BUILD_SLICES && !is_prebuilt(r))
+        vfi_slices_build(&r->volume, window, r->built_slices);
+    r->window = window;
     r->have_window = true;
     return r->have_tf ? encode_runs(r) : VF_OK;
 }
@@ -281,6 +328,8 @@ vf_status_t vf_renderer_begin(vf_renderer_t *r, const vf_frame_t *frame)
         s = vf_factor_rays(&r->factor, r->params.rays); /* fits: checked against the largest view at create */
     if (s != VF_OK)
         return s;
+    if ((size_t)r->factor.int_w * r->factor.int_h > r->intermediate_max)
+        return VF_ERR_NOMEM; /* an intermediate image reserved for smaller views (vf_prebuilt_t) */
     update_tables(r, parts, frame->one_thread);
 #if VF_LIGHTING
     if (r->lit)
@@ -551,19 +600,22 @@ static size_t order2_bytes(const vf_params_t *p)
 #endif
 }
 
-/* Normal codes and magnitudes per copy, the codes' unit normals, the shade table and the ramp. */
-static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol)
+/* Normal codes and magnitudes per copy and the codes' unit normals (unless prebuilt), the shade table and the
+ * ramp. */
+static size_t normals_bytes(const vf_params_t *p, const vf_volume_t *vol, bool prebuilt)
 {
     if (!VF_LIGHTING || !p->lighting)
         return 0;
     const uint32_t codes = vfi_normal_code_count(vfi_normal_levels(p->normal_bits));
     size_t bytes = 0;
-    for (int a = 0; a < 3; a++)
+    for (int a = 0; a < 3 && !prebuilt; a++)
         bytes += vfi_arena_block(sizeof(uint16_t) * vfi_slices_bytes(vol->dims, a)) +
                  vfi_arena_block(vfi_slices_bytes(vol->dims, a));
-    return bytes + vfi_arena_block(sizeof(int32_t) * 3 * codes) + vfi_arena_block(sizeof(uint64_t) * codes) +
-           vfi_arena_block(sizeof(uint16_t) * 256);
+    if (!prebuilt)
+        bytes += vfi_arena_block(sizeof(int32_t) * 3 * codes);
+    return bytes + vfi_arena_block(sizeof(uint64_t) * codes) + vfi_arena_block(sizeof(uint16_t) * 256);
 }
+
 
 #if VF_LIGHTING
 /* The lighting's memory, the normals made from the volume, and the default lighting. False when short. */
@@ -572,21 +624,34 @@ static bool lighting_alloc(vf_renderer_t *r, vf_arena_t *arena)
     const vf_params_t *p = &r->params;
     const uint32_t levels = vfi_normal_levels(p->normal_bits);
     r->code_count = vfi_normal_code_count(levels);
-    for (int a = 0; a < 3; a++) {
-        r->codes[a] = vfi_arena_alloc(arena, sizeof(uint16_t) * vfi_slices_bytes(r->volume.dims, a));
-        r->magnitudes[a] = vfi_arena_alloc(arena, vfi_slices_bytes(r->volume.dims, a));
-        if (!r->codes[a] || !r->magnitudes[a])
+    uint16_t *codes[3] = {NULL, NULL, NULL};
+    uint8_t *magnitudes[3] = {NULL, NULL, NULL};
+    for (int a = 0; a < 3 && !is_prebuilt(r); a++) {
+        r->codes[a] = codes[a] = vfi_arena_alloc(arena, sizeof(uint16_t) * vfi_slices_bytes(r->volume.dims, a));
+        r->magnitudes[a] = magnitudes[a] = vfi_arena_alloc(arena, vfi_slices_bytes(r->volume.dims, a));
+        if (!codes[a] || !magnitudes[a])
             return false;
     }
-    r->unit = vfi_arena_alloc(arena, sizeof(int32_t) * 3 * r->code_count);
+    int32_t *unit = is_prebuilt(r) ? NULL : vfi_arena_alloc(arena, sizeof(int32_t) * 3 * r->code_count);
+    if (is_prebuilt(r)) { /* made on a host, checked against these parameters at create */
+        for (int a = 0; a < 3; a++) {
+            r->codes[a] = r->storage->codes[a];
+            r->magnitudes[a] = r->storage->magnitudes[a];
+        }
+        r->unit = r->storage->unit;
+    } else {
+        r->unit = unit;
+    }
     r->shade = vfi_arena_alloc(arena, sizeof(uint64_t) * r->code_count);
     r->ramp = vfi_arena_alloc(arena, sizeof(uint16_t) * 256);
     if (has_2d_table(p))
         r->lit_table = vfi_arena_alloc(arena, table_entries(p) * 4 * table_value_bytes(p));
     if (!r->unit || !r->shade || !r->ramp || (has_2d_table(p) && !r->lit_table))
         return false;
-    vfi_normals_build(&r->volume, levels, r->codes, r->magnitudes);
-    vfi_normals_decode(levels, r->unit);
+    if (VF_BUILD_SLICES && !is_prebuilt(r)) {
+        vfi_normals_build(&r->volume, levels, codes, magnitudes);
+        vfi_normals_decode(levels, unit);
+    }
     vf_lighting_t l;
     vf_lighting_default(&l);
     return vf_renderer_set_lighting(r, &l) == VF_OK;
@@ -635,6 +700,15 @@ static size_t intermediate_pixels(const uint32_t dims[3], uint32_t rays, uint32_
     return most;
 }
 
+/* The intermediate image's pixels that create reserves: the largest of any view, or of the views prebuilt storage
+ * was made for. */
+static size_t reserved_intermediate(const vf_volume_t *vol, uint32_t rays, const vf_prebuilt_t *pre, uint32_t *max_w,
+                                    uint32_t *max_ni)
+{
+    const size_t most = intermediate_pixels(vol->dims, rays, max_w, max_ni);
+    return pre && pre->intermediate_pixels && pre->intermediate_pixels < most ? pre->intermediate_pixels : most;
+}
+
 /* The row extents' bytes (renderer.h): two values for each row of the tallest intermediate image of any view, in
  * builds that have them (VF_SPECIAL_LOOPS). */
 static size_t extent_bytes(const uint32_t dims[3], uint32_t rays)
@@ -657,6 +731,12 @@ static vf_status_t encode_runs(vf_renderer_t *r)
     vf_arena_t *arena = r->arena;
     r->have_runs = false;
     vfi_arena_rewind(arena, r->runs_mark);
+    if (is_prebuilt(r) && vfi_prebuilt_adopt_runs(r)) { /* the prebuilt run lists are of this visibility */
+        r->needed = r->runs_mark + VFI_ALIGN;
+        r->memory.runs = 0;
+        r->have_runs = true;
+        return VF_OK;
+    }
     /* One pass per axis, straight into the arena's free space; only when that is too small are the remaining
      * axes counted, to say how big an arena would do (vf_renderer_needed_bytes). */
     size_t total = 0;
@@ -664,9 +744,12 @@ static vf_status_t encode_runs(vf_renderer_t *r)
     for (int a = 0; a < 3; a++) {
         vfi_runs_t *runs = &r->runs[a];
         size_t index_bytes = vfi_runs_index_bytes(&r->layout[a]), free_bytes = 0, values;
-        runs->row_start = short_of_memory ? NULL : vfi_arena_alloc(arena, index_bytes);
-        runs->pairs = runs->row_start ? vfi_arena_top(arena, &free_bytes) : NULL;
-        values = vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, runs, free_bytes / sizeof(uint16_t));
+        uint32_t *row_start = short_of_memory ? NULL : vfi_arena_alloc(arena, index_bytes);
+        uint16_t *pairs = row_start ? vfi_arena_top(arena, &free_bytes) : NULL;
+        values = vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, row_start, pairs, free_bytes / sizeof(uint16_t));
+        runs->row_start = row_start;
+        runs->pairs = pairs;
+        runs->nj = r->layout[a].nj;
         /* at least one value, so that an all-invisible volume still has a non-NULL array */
         size_t pair_bytes = vfi_arena_block(sizeof(uint16_t) * (values ? values : 1));
         total += index_bytes + pair_bytes;

@@ -30,8 +30,12 @@ struct vf_renderer {
     size_t needed;         /* after VF_ERR_NOMEM: the arena size that would have been enough */
 
     vfi_layout_t layout[3];
-    uint8_t *slices[3];
+    const uint8_t *slices[3];  /* the arena's (built_slices), or prebuilt read-only storage */
+    uint8_t *built_slices[3];  /* what set_window writes; NULL over prebuilt storage */
     bool have_window;
+    vf_window_t window;        /* the window of the slices */
+    bool prebuilt;             /* made by vf_renderer_create_prebuilt: its slices, normals and run lists below */
+    const vf_prebuilt_t *storage; /* the caller's, which outlives the renderer */
 
     vfi_classify_t cls;
     bool have_tf;
@@ -69,9 +73,9 @@ struct vf_renderer {
     /* Lighting (params.lighting): the normals, made at create; the lighting asked for; the shade table, remade
      * when the view's rotation or the lighting changes; the front-weighted table (and its view table) beside the
      * 2D table, built with it. */
-    uint16_t *codes[3];
-    uint8_t *magnitudes[3];
-    int32_t *unit;           /* [codes][3] unit normals, Q1.30 */
+    const uint16_t *codes[3];
+    const uint8_t *magnitudes[3];
+    const int32_t *unit;     /* [codes][3] unit normals, Q1.30 */
     uint32_t code_count;
     uint64_t *shade;         /* [code_count] L_d and L_s in lanes (shade.h) */
     uint16_t *ramp;          /* [256] gradient-opacity factors */
@@ -128,6 +132,13 @@ static inline bool vfi_lit(const vf_renderer_t *r)
     return false;
 #endif
 }
+
+/* prebuilt.c: whether prebuilt storage fits these parameters and this volume (every array there and of its size,
+ * the lighting's exactly when the parameters light, the run lists' when visible_from is given, each run list
+ * whole; VF_ERR_NULL or VF_ERR_ARG); and, for a renderer over it with its transfer function classified, whether
+ * the prebuilt run lists are of that visibility, then taken as its own. */
+vf_status_t vfi_prebuilt_check(const vf_params_t *p, const vf_volume_t *vol, const vf_prebuilt_t *pre);
+bool vfi_prebuilt_adopt_runs(vf_renderer_t *r);
 
 /* composite.c */
 vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes);

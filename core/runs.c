@@ -34,28 +34,27 @@ size_t vfi_runs_index_bytes(const vfi_layout_t *l)
 }
 
 /* Emit a (skip, length) pair if there is room; count it either way. */
-static inline void emit(vfi_runs_t *runs, size_t capacity, size_t *used, uint32_t skip, uint32_t length)
+static inline void emit(uint16_t *pairs, size_t capacity, size_t *used, uint32_t skip, uint32_t length)
 {
     if (*used + 2 <= capacity) {
-        runs->pairs[*used] = (uint16_t)skip;
-        runs->pairs[*used + 1] = (uint16_t)length;
+        pairs[*used] = (uint16_t)skip;
+        pairs[*used + 1] = (uint16_t)length;
     }
     *used += 2;
 }
 
-size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *l, const vfi_classify_t *cls, vfi_runs_t *runs,
-                       size_t capacity)
+size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *l, const vfi_classify_t *cls, uint32_t *row_start,
+                       uint16_t *pairs, size_t capacity)
 {
-    const bool index = runs->row_start != NULL;
+    const bool index = row_start != NULL;
     const uint16_t *visible_from = cls->visible_from;
-    if (!runs->pairs)
+    if (!pairs)
         capacity = 0;
     size_t used = 0;
-    runs->nj = l->nj;
     for (uint32_t k = 0; k + 1 < l->nk; k++)
         for (uint32_t j = 0; j < l->nj; j++) {
             if (index)
-                runs->row_start[k * l->nj + j] = (uint32_t)used;
+                row_start[k * l->nj + j] = (uint32_t)used;
             /* the four rows (j, j+1) x (k, k+1) of the cell row */
             const uint8_t *r00 = copy + (size_t)k * l->slice + (size_t)j * l->row;
             const uint8_t *r01 = r00 + l->row, *r10 = r00 + l->slice, *r11 = r10 + l->row;
@@ -75,7 +74,7 @@ size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *l, const vfi_cla
                     if (max2(hi[c], hi[c + 1]) >= visible_from[min2(lo[c], lo[c + 1])]) {
                         length++;
                     } else if (length) { /* a run ends: emit it, start counting invisible cells again */
-                        emit(runs, capacity, &used, skip, length);
+                        emit(pairs, capacity, &used, skip, length);
                         skip = 1;
                         length = 0;
                     } else {
@@ -84,9 +83,28 @@ size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *l, const vfi_cla
                 }
             }
             if (length)
-                emit(runs, capacity, &used, skip, length);
+                emit(pairs, capacity, &used, skip, length);
         }
     if (index)
-        runs->row_start[(l->nk - 1) * l->nj] = (uint32_t)used;
+        row_start[(l->nk - 1) * l->nj] = (uint32_t)used;
     return used;
+}
+
+bool vfi_runs_valid(const uint32_t *row_start, size_t row_count, const uint16_t *pairs, size_t pair_count,
+                    const vfi_layout_t *l)
+{
+    if (row_count != (size_t)(l->nk - 1) * l->nj + 1 || row_start[0] != 0 || row_start[row_count - 1] != pair_count)
+        return false;
+    for (size_t r = 0; r + 1 < row_count; r++) {
+        const uint32_t begin = row_start[r], end = row_start[r + 1];
+        if (end < begin || (end - begin) % 2)
+            return false;
+        uint32_t cells = 0;
+        for (uint32_t at = begin; at < end; at += 2) {
+            cells += (uint32_t)pairs[at] + pairs[at + 1];
+            if (cells > l->ni)
+                return false;
+        }
+    }
+    return true;
 }

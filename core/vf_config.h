@@ -55,6 +55,18 @@
 #define VF_LIT_TABLES VF_LIGHTING /* the builds that light frames */
 #endif
 
+/* Renderers over prebuilt storage (vf_renderer_create_prebuilt: slices, normals and run lists made on a host and
+ * kept in a device's read-only memory): 0 leaves the entry's checks and paths out (VF_ERR_UNSUPPORTED). */
+#ifndef VF_PREBUILT
+#define VF_PREBUILT 1
+#endif
+
+/* The core's own builders of the slices and normals from a volume (vf_renderer_create, set_window): 0 leaves them
+ * out of a firmware whose renderers all take prebuilt storage (vf_renderer_create then gives VF_ERR_UNSUPPORTED). */
+#ifndef VF_BUILD_SLICES
+#define VF_BUILD_SLICES 1
+#endif
+
 /* Loops specialised for cases that the general ones also render, to the bit, for speed alone: point's loop of the
  * default path for table sizes other than 256 (engine's point frame at 128 entries: 64.7 M instructions, 86.0 M
  * with the general loop; callgrind, make bench's count), and the 2D table builder's block for grey transfer

@@ -295,6 +295,46 @@ size_t vf_renderer_needed_bytes(const vf_renderer_t *renderer);
 void vf_renderer_memory(const vf_renderer_t *renderer, vf_memory_t *memory);
 const vf_params_t *vf_renderer_params(const vf_renderer_t *renderer);
 
+/* Prebuilt storage, for a device that keeps in read-only memory (flash) what the renderer would otherwise build in
+ * its arena for one window and, optionally, one transfer function: the 8-bit slices of every principal axis, with
+ * lighting the normals, and the run lists. vf_renderer_export describes a renderer's own (on a host, to write them
+ * out); vf_renderer_create_prebuilt adopts them, read-only, and they (and the vf_prebuilt_t) must outlive the
+ * renderer. Such a renderer:
+ * - takes vf_renderer_set_window for the prebuilt window only (another: VF_ERR_UNSUPPORTED);
+ * - adopts the run lists when vf_renderer_set_tf's transfer function has the visibility they were encoded for
+ *   (visible_from, compared exactly), and otherwise encodes new ones in the arena as any renderer does (so a
+ *   device that changes its transfer function needs the arena that vf_renderer_needed_bytes then reports);
+ * - reserves an intermediate image of intermediate_pixels (0: the largest of any view), and vf_renderer_begin
+ *   gives VF_ERR_NOMEM for a view whose intermediate image is larger.
+ * Sizes are in elements; vf_renderer_create_prebuilt checks every size and every row of the run lists
+ * (VF_ERR_ARG when one is wrong, VF_ERR_NULL for a missing array). */
+typedef struct vf_prebuilt {
+    vf_window_t window;            /* the window the slices (and the run lists) were made with */
+    const uint8_t *slices[3];      /* per principal axis, the renderer's slice layout */
+    size_t slice_count[3];
+    const uint16_t *codes[3];      /* lighting only (else NULL): normal codes and gradient magnitudes per axis, as */
+    const uint8_t *magnitudes[3];  /* many as the slices', and the unit normal of each code (3 values a code) */
+    const int32_t *unit;
+    size_t unit_count;
+    const uint16_t *visible_from;  /* [256] the visibility the run lists were encoded for; NULL: no run lists */
+    const uint32_t *row_start[3];  /* per axis, the run lists' row index and (skip, length) pairs */
+    size_t row_count[3];
+    const uint16_t *pairs[3];
+    size_t pair_count[3];
+    uint32_t intermediate_pixels;  /* the largest intermediate image of the views to come, 0: any view */
+} vf_prebuilt_t;
+
+/* What renderer holds after its window and transfer function (and with lighting its normals): pointers into its
+ * arena, valid while it lives, with intermediate_pixels 0. VF_ERR_STATE before a window and transfer function. */
+vf_status_t vf_renderer_export(const vf_renderer_t *renderer, vf_prebuilt_t *prebuilt);
+
+/* vf_renderer_bytes and vf_renderer_create for a renderer over prebuilt storage: no slices, normals or (when they
+ * are adopted) run lists in the arena. */
+vf_status_t vf_renderer_prebuilt_bytes(const vf_params_t *params, const vf_volume_t *volume,
+                                       const vf_prebuilt_t *prebuilt, size_t *bytes);
+vf_status_t vf_renderer_create_prebuilt(vf_renderer_t **renderer, const vf_params_t *params,
+                                        const vf_volume_t *volume, const vf_prebuilt_t *prebuilt, vf_arena_t *arena);
+
 /* A frame: the view, the output size, and how the caller will run it. Zero-initialise and set view, width and
  * height for a frame on one thread; the other fields only matter to callers with threads. */
 typedef struct vf_frame {

@@ -42,6 +42,9 @@ static int failed(const char *what, vf_status_t status);
 static void report(const char *label, size_t bytes, const char *after);
 static uint64_t frame_hash(const vf_image_t *image);
 static uint32_t ticks(void);
+#if SCENE_PREBUILT
+static size_t prebuilt_bytes(void);
+#endif
 
 int main(void)
 {
@@ -54,9 +57,16 @@ int main(void)
     vf_arena_t arena;
     vf_arena_init(&arena, arena_buffer, sizeof arena_buffer);
     vf_renderer_t *r = NULL;
+#if SCENE_PREBUILT
+    /* the slices, normals and run lists in read-only memory (gen_scene --prebuilt, scene_data.S) */
+    vf_status_t s = vf_renderer_create_prebuilt(&r, &scene_params, &scene_volume, &scene_prebuilt, &arena);
+    if (s != VF_OK)
+        return failed("vf_renderer_create_prebuilt", s);
+#else
     vf_status_t s = vf_renderer_create(&r, &scene_params, &scene_volume, &arena);
     if (s != VF_OK)
         return failed("vf_renderer_create", s);
+#endif
     t[0] = ticks();
     if ((s = vf_renderer_set_window(r, scene_window)) != VF_OK)
         return failed("vf_renderer_set_window", s);
@@ -116,6 +126,10 @@ int main(void)
     report("", vf_renderer_band_scratch_bytes(r, int_h), " for all ");
     report("", int_h, " rows at once)\n");
     report("frame: ", sizeof frame, " bytes\n");
+#if SCENE_PREBUILT
+    report("prebuilt in read-only memory: ", prebuilt_bytes(), " bytes; a new transfer function's run lists (this one's: ");
+    report("", SCENE_RUNS_BYTES, ") are encoded in the arena\n");
+#endif
     report("stack: ", startup_stack_used(), " bytes used");
     report(" of ", startup_stack_size(), "\n");
     report("timer ticks (25 MHz): window ", t[1] - t[0], ", transfer function ");
@@ -141,6 +155,19 @@ static void report(const char *label, size_t bytes, const char *after)
     sh_putu((uint32_t)bytes);
     sh_puts(after);
 }
+
+#if SCENE_PREBUILT
+/* The prebuilt arrays' bytes, as scene_prebuilt counts them. */
+static size_t prebuilt_bytes(void)
+{
+    const vf_prebuilt_t *p = &scene_prebuilt;
+    size_t bytes = sizeof(uint16_t) * 256 + sizeof(int32_t) * p->unit_count;
+    for (int a = 0; a < 3; a++)
+        bytes += p->slice_count[a] * (p->codes[a] ? 4 : 1) + sizeof(uint32_t) * p->row_count[a] +
+                 sizeof(uint16_t) * p->pair_count[a];
+    return bytes;
+}
+#endif
 
 static uint32_t ticks(void)
 {

@@ -7,6 +7,7 @@
 # arena ends in VF_ERR_NOMEM with status 2, an option the build leaves out in VF_ERR_UNSUPPORTED with status 2,
 # the core at -Os calls nothing but libgcc's helpers, and its code stays within the 24 KB budget. Variants with
 # order 2 and with lighting built in render their frames as the host does; a core that lights stays within 32 KB.
+# neghip 64^3 lit and unlit over storage prebuilt into flash fits 256 KB of SRAM with the host's frame.
 cd "$(dirname "$0")/../.." || exit 2
 build=${BUILD:-build}
 sim=$build/volfix-sim
@@ -39,14 +40,15 @@ default="$volume --size 64x64 --format rgb565 --mode preint1 --preset ramp --vie
 changed="$volume --size 48x40 --format xrgb8888 --mode preint1 --preset sharp --view 200,-40,15 --zoom 1.3"
 changed="$changed --table-size 64 --table-bits 8 --lookup bilinear --correction lut --buffer image"
 
-# firmware NAME SCENE BAND_ROWS [GEN_OPTS [FEATURES]]: build it (with the Makefile's MCU_FEATURES, or FEATURES and
-# its own build directory) and run it; $tmp/NAME.out gets its output, $tmp/NAME.status its exit status (124: the
-# timeout ended it)
+# firmware NAME SCENE BAND_ROWS [GEN_OPTS [FEATURES [STACK]]]: build it (with the Makefile's MCU_FEATURES, or
+# FEATURES and its own build directory; a stack of STACK bytes, else the Makefile's) and run it; $tmp/NAME.out gets
+# its output, $tmp/NAME.status its exit status (124: the timeout ended it)
 firmware() {
-    name=$1 scene=$2 rows=$3 gen=${4:-} features=${5:-}
+    name=$1 scene=$2 rows=$3 gen=${4:-} features=${5:-} stack=${6:-}
     dir=$mcu
     set --
     if [ -n "$features" ]; then dir=$mcu-$name; set -- MCU_FEATURES="$features"; fi
+    if [ -n "$stack" ]; then set -- "$@" MCU_STACK="$stack"; fi
     if ! ${MAKE:-make} --no-print-directory BUILD="$build" SAN="${SAN:-}" MCU_BUILD="$dir" MCU_SCENE="$scene" \
         MCU_BAND_ROWS="$rows" MCU_GEN_OPTS="$gen" "$@" mcu-firmware >"$tmp/$name.build" 2>&1; then
         fail "$name" "make mcu-firmware failed: $(grep -m 3 -iE 'error|undefined' "$tmp/$name.build" | tr '\n' ' ')"
@@ -185,4 +187,38 @@ if firmware litpoint "$litpoint" 8 "" "$features"; then
     text=$(core_text "$mcu-litpoint")
     if [ -n "$text" ] && [ "$text" -le 32768 ]; then ok "core .text with lighting but not its tables, as linked: $text bytes <= 32 KB"; else
         fail "core .text with lighting" "${text:-no} bytes as linked, over the 32 KB (32768) budget"; fi
+fi
+
+# 7. neghip 64^3 on a 256 KB board: the slices, normals and run lists made on the host into the firmware's read-only
+# memory (gen_scene --prebuilt, vf_renderer_create_prebuilt), a core without the builders they replace
+# (-DVF_PREBUILT=1 -DVF_BUILD_SLICES=0), 12-bit normals, 64-entry 16-bit tables, a 4 KB stack. Lit preint1 at
+# 128x128 RGB565 and the same unlit: each frame equals the host's, the firmware's whole SRAM (data + bss, the stack
+# among them, as arm-none-eabi-size counts) is at most 256 KB, nothing of the slices or run lists is in the arena,
+# and the core as linked is within 40 KB lit and 24 KB unlit.
+if [ ! -f "$data/neghip.nhdr" ]; then
+    fail "neghip data" "no neghip.nhdr in VOLFIX_DATA='$data'"
+else
+    base="$data/neghip.nhdr --size 128x128 --format rgb565 --mode preint1 --preset ramp --view 30,20"
+    base="$base --table-size 64 --table-bits 16"
+    for variant in lit unlit; do
+        name=neghip-$variant
+        if [ $variant = lit ]; then scene="$base --shade phong --normal-bits 12" lighting=1 budget=40960; else
+            scene="$base" lighting=0 budget=24576; fi
+        features=$(${MAKE:-make} -s --no-print-directory print-MCU_FEATURES |
+            sed "s/-DVF_LIGHTING=0/-DVF_LIGHTING=$lighting/; s/-DVF_PREBUILT=0/-DVF_PREBUILT=1 -DVF_BUILD_SLICES=0/")
+        firmware "$name" "$scene" 8 --prebuilt "$features" 4096 || continue
+        check_frame "$name" "$scene"
+        # Berkeley format: text data bss dec hex filename; .stack is NOLOAD in data memory, counted in bss
+        sram=$(arm-none-eabi-size "$mcu-$name/fw.elf" | awk 'NR == 2 { print $2 + $3 }')
+        if [ -n "$sram" ] && [ "$sram" -le 262144 ]; then ok "$name SRAM (data + bss + stack) $sram bytes <= 256 KB"; else
+            fail "$name SRAM" "${sram:-no} bytes of data + bss, over 256 KB (262144)"; fi
+        if grep -q '^arena: peak [0-9]* bytes of [0-9]* (renderer [0-9]*, slices 0, runs 0,' "$tmp/$name.out"; then
+            ok "$name: slices and run lists read from read-only memory, none in the arena"
+        else
+            fail "$name arena" "expected slices 0, runs 0: $(grep '^arena' "$tmp/$name.out")"
+        fi
+        text=$(core_text "$mcu-$name")
+        if [ -n "$text" ] && [ "$text" -le "$budget" ]; then ok "$name core .text as linked $text bytes <= $budget"; else
+            fail "$name core .text" "${text:-no} bytes as linked, over $budget"; fi
+    done
 fi
