@@ -7,7 +7,7 @@
  *
  * The threads live as long as the renderer: vfp_render_open starts threads - 1 workers, each frame wakes them
  * once, and the calling thread works beside them; vfp_render_close joins them. A renderer is used by one thread
- * at a time (its caller), and may be moved between frames: the workers hold nothing of it between frames.
+ * at a time (its caller).
  */
 #ifndef VFP_RENDER_MT_H
 #define VFP_RENDER_MT_H
