@@ -919,15 +919,23 @@ void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, ui
     demand->out = out;
     demand->slab_q16 = slab_q16;
     demand->visible_count = list_intervals(cls, scratch, &demand->grey);
+    demand->fill = NULL;
+    demand->built = NULL;
+    demand->context = NULL;
 }
 
 void vfi_preint_demand_diagonal(const vfi_demand_t *demand, uint32_t f, uint32_t b)
 {
+    const uint32_t r = f > b ? f - b : b - f;
+    if (demand->fill && demand->fill(demand->context, r))
+        return;
     if (vfi_table_out_lit(demand->out))
         build_diagonal_lit(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->grey,
-                           demand->out, f > b ? f - b : b - f);
+                           demand->out, r);
     else
         build_diagonal(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->grey,
-                       demand->out, f > b ? f - b : b - f);
+                       demand->out, r);
+    if (demand->built)
+        demand->built(demand->context, r);
 }
 #endif

@@ -57,7 +57,13 @@ struct vfp_pool {
     _Alignas(64) atomic_uint arrived; /* threads at the barrier in this phase */
     _Alignas(64) atomic_uint phase;   /* barriers passed */
     _Alignas(64) atomic_int sleepers; /* threads asleep on a futex, or about to be */
+    /* per diagonal of a table built as read in the threads' copies: 0 none has it, BUILDING one is building it,
+     * READY | t thread t's copy has it */
+    _Alignas(64) atomic_uint diagonal[VF_MAX_TABLE];
 };
+
+#define BUILDING 0x100u
+#define READY 0x200u
 
 static vfp_status_t create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t errlen);
 static uint32_t table_parts(int threads);
@@ -66,6 +72,8 @@ static struct vfp_pool *pool_start(int threads);
 static void pool_stop(struct vfp_pool *pool);
 static void *worker_main(void *arg);
 static void run_frame(struct vfp_pool *pool, frame_work_t *work, int index);
+static bool fill_diagonal(void *context, uint32_t diagonal);
+static void built_diagonal(void *context, uint32_t diagonal);
 static void barrier(struct vfp_pool *pool);
 static void wait_while(struct vfp_pool *pool, atomic_uint *word, unsigned value);
 static void wake_all(struct vfp_pool *pool, atomic_uint *word);
@@ -124,16 +132,17 @@ vfp_status_t vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uin
 vfp_status_t vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen)
 {
     double t0 = vfp_now_ms();
-    /* with threads, a table that went stale is built in a part a thread; on one, the bands (one after another)
-     * build the diagonals they read */
+    /* on one thread the bands (one after another) build the diagonals of a stale table they read; with threads
+     * each in its own copy of the table, or where the core cannot, the table is built first in parts */
+    struct vfp_pool *pool = r->pool;
     const vf_frame_t frame = {.view = *view, .width = image->width, .height = image->height,
-                              .table_parts = r->threads > 1 ? table_parts(r->threads) : 0, .one_thread = r->threads == 1};
+                              .table_parts = pool ? table_parts(r->threads) : 0, .one_thread = !pool,
+                              .thread_tables = pool && r->table_copy_bytes};
     vf_status_t s = vf_renderer_begin(r->core, &frame);
     if (s != VF_OK) {
         snprintf(err, errlen, "cannot begin a frame: %s", vf_status_text(s));
         return VFP_ERR;
     }
-    struct vfp_pool *pool = r->pool;
     frame_work_t local, *work = pool ? &pool->work : &local;
     work->r = r;
     work->image = image;
@@ -147,6 +156,8 @@ vfp_status_t vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_i
     atomic_init(&work->status[FAIL_TABLES], VF_OK);
     atomic_init(&work->status[FAIL_BANDS], VF_OK);
     if (pool) {
+        for (uint32_t d = 0; d < r->params.table_size && d < VF_MAX_TABLE; d++)
+            atomic_store_explicit(&pool->diagonal[d], 0, memory_order_relaxed); /* none built in any copy */
         atomic_fetch_add(&pool->posted, 1); /* sequentially consistent: the work above is seen with it */
         wake_all(pool, &pool->posted);
     }
@@ -172,8 +183,10 @@ void vfp_render_close(vfp_render_t *r)
 {
     if (r->pool)
         pool_stop(r->pool);
-    for (int t = 0; t < VFP_MAX_THREADS; t++)
+    for (int t = 0; t < VFP_MAX_THREADS; t++) {
         free(r->scratch[t]);
+        free(r->table_copy[t]);
+    }
     free(r->arena_buf);
     memset(r, 0, sizeof *r);
 }
@@ -203,6 +216,17 @@ static vfp_status_t create_core(vfp_render_t *r, size_t arena_bytes, char *err, 
         r->scratch[t] = malloc(r->scratch_bytes);
         if (!r->scratch[t]) {
             snprintf(err, errlen, "out of memory for band scratch");
+            return VFP_ERR;
+        }
+    }
+    /* a copy of the table a thread, for frames that build it as read */
+    r->table_copy_bytes = r->threads > 1 ? vf_renderer_thread_table_bytes(r->core) : 0;
+    for (int t = 0; t < r->threads && r->table_copy_bytes; t++) {
+        free(r->table_copy[t]);
+        r->table_copy[t] = malloc(r->table_copy_bytes);
+        if (!r->table_copy[t]) {
+            snprintf(err, errlen, "out of memory for the threads' copies of the table (%zu KB each)",
+                     r->table_copy_bytes >> 10);
             return VFP_ERR;
         }
     }
@@ -258,6 +282,9 @@ static struct vfp_pool *pool_start(int threads)
     atomic_init(&pool->arrived, 0);
     atomic_init(&pool->phase, 0);
     atomic_init(&pool->sleepers, 0);
+    for (int d = 0; d < VF_MAX_TABLE; d++)
+        atomic_init(&pool->diagonal[d], 0);
+    pool->args[0] = (worker_t){pool, 0}; /* the calling thread's, for its copy of the table */
     for (int t = 1; t < threads; t++) {
         pool->args[t] = (worker_t){pool, t};
         if (pthread_create(&pool->ids[t], NULL, worker_main, &pool->args[t]) != 0)
@@ -346,10 +373,19 @@ static void run_frame(struct vfp_pool *pool, frame_work_t *work, int index)
     }
     if (index == 0)
         work->t_tables = vfp_now_ms();
+    const vf_thread_table_t copy = {r->table_copy[index], r->table_copy_bytes, fill_diagonal, built_diagonal,
+                                    pool ? &pool->args[index] : NULL};
+    if (pool && copy.memory) { /* a no-op when the frame's table is shared */
+        vf_status_t s = vf_renderer_thread_table_begin(r->core, &copy);
+        if (s != VF_OK)
+            fail(&work->status[FAIL_BANDS], s);
+    }
     uint32_t v0, v1;
     while (atomic_load(&work->status[FAIL_TABLES]) == VF_OK && atomic_load(&work->status[FAIL_BANDS]) == VF_OK &&
            next_band(work, &work->next_row, work->int_rows, BAND_MOST, BAND_FEWEST, &v0, &v1)) {
-        vf_status_t s = vf_renderer_composite_band(r->core, v0, v1, scratch, r->scratch_bytes);
+        vf_status_t s = pool && copy.memory
+                            ? vf_renderer_composite_band_in(r->core, v0, v1, scratch, r->scratch_bytes, &copy)
+                            : vf_renderer_composite_band(r->core, v0, v1, scratch, r->scratch_bytes);
         if (s != VF_OK)
             fail(&work->status[FAIL_BANDS], s);
     }
@@ -364,6 +400,34 @@ static void run_frame(struct vfp_pool *pool, frame_work_t *work, int index)
             fail(&work->status[FAIL_BANDS], s);
     }
     barrier(pool); /* the frame ends when every thread has left it: the caller may then change anything */
+}
+
+/* A band of thread w met an unbuilt diagonal of its copy of the table: copied from another thread's copy that has
+ * it (true), or left to the core to build (false), claimed first so that the others copy it rather than build it
+ * too. When another thread is building it, this one builds it as well rather than wait: the same entries, to the
+ * bit, in its own copy. */
+static bool fill_diagonal(void *context, uint32_t d)
+{
+    const worker_t *w = context;
+    struct vfp_pool *pool = w->pool;
+    const vfp_render_t *r = pool->work.r;
+    unsigned state = atomic_load_explicit(&pool->diagonal[d], memory_order_acquire);
+    if (state == 0 && atomic_compare_exchange_strong_explicit(&pool->diagonal[d], &state, BUILDING,
+                                                              memory_order_acq_rel, memory_order_acquire))
+        return false;
+    if (!(state & READY))
+        return false;
+    const int from = (int)(state & 0xFFu);
+    const vf_thread_table_t a = {r->table_copy[from], r->table_copy_bytes, NULL, NULL, NULL},
+                            b = {r->table_copy[w->index], r->table_copy_bytes, NULL, NULL, NULL};
+    return vf_renderer_copy_diagonal(r->core, &a, &b, d) == VF_OK;
+}
+
+/* Thread w's copy has diagonal d now: the release makes its entries visible to a thread that reads the state. */
+static void built_diagonal(void *context, uint32_t d)
+{
+    const worker_t *w = context;
+    atomic_store_explicit(&w->pool->diagonal[d], READY | (unsigned)w->index, memory_order_release);
 }
 
 /* Every thread of the pool waits here until all have come; the last one in lets them go. NULL: one thread. */

@@ -5,6 +5,9 @@
  * built in a part a thread, and compositing and warping spread over threads in bands. The same pixels for any
  * thread count: each table entry is built by one part, each pixel computed by one band.
  *
+ * Where one thread would build the 2D table as compositing reads it, a diagonal at a time, threads do the same in
+ * a copy each, and a thread that needs a diagonal another has built copies it instead of building it again.
+ *
  * The threads live as long as the renderer: vfp_render_open starts threads - 1 workers, each frame wakes them
  * once, and the calling thread works beside them; vfp_render_close joins them. A renderer is used by one thread
  * at a time (its caller).
@@ -37,6 +40,8 @@ typedef struct vfp_render {
     uint32_t band_rows;               /* intermediate rows per compositing band */
     size_t scratch_bytes;
     void *scratch[VFP_MAX_THREADS];
+    size_t table_copy_bytes;          /* with threads: each thread's copy of a table built as read (0: none) */
+    void *table_copy[VFP_MAX_THREADS];
     struct vfp_pool *pool;            /* the workers, NULL with one thread */
     double ms_tables, ms_composite, ms_warp; /* the last frame's stages (begin includes table rebuilds) */
     double ms_classify;                      /* the last window or transfer-function change */
