@@ -25,6 +25,10 @@
 /* How long a thread that waits for the others polls before it sleeps: longer than a frame's usual imbalance and
  * the main thread's work between frames (a few tens of microseconds), short enough not to hold a shared core. */
 #define SPIN_NS 60000
+/* A diagonal's state in the threads' copies of a table built as read (struct vfp_pool): 0 no copy has it,
+ * BUILDING a thread is building it, READY | t thread t's copy has it */
+#define BUILDING 0x100u
+#define READY 0x200u
 
 enum { FAIL_TABLES, FAIL_BANDS };
 
@@ -57,13 +61,8 @@ struct vfp_pool {
     _Alignas(64) atomic_uint arrived; /* threads at the barrier in this phase */
     _Alignas(64) atomic_uint phase;   /* barriers passed */
     _Alignas(64) atomic_int sleepers; /* threads asleep on a futex, or about to be */
-    /* per diagonal of a table built as read in the threads' copies: 0 none has it, BUILDING one is building it,
-     * READY | t thread t's copy has it */
-    _Alignas(64) atomic_uint diagonal[VF_MAX_TABLE];
+    _Alignas(64) atomic_uint diagonal[VF_MAX_TABLE]; /* per diagonal: 0, BUILDING or READY | t */
 };
-
-#define BUILDING 0x100u
-#define READY 0x200u
 
 static vfp_status_t create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t errlen);
 static uint32_t table_parts(int threads);
