@@ -378,15 +378,20 @@ typedef struct thread_head {
 } thread_head_t;
 
 #if VF_TABLE_ON_DEMAND
-/* Diagonal d of an n x n table of four values an entry: entries (f, f + d) and (f + d, f). */
+/* Diagonal d of an n x n table of four values an entry: entries (f, f + d) and (f + d, f), each copied as one
+ * object (as preint.c's builder copies them), a move where four values were four. */
+typedef struct entry4 {
+    uint16_t v[4];
+} entry4_t;
+
 static void copy_diagonal(const uint16_t *from, uint16_t *to, uint32_t n, uint32_t d)
 {
-    const size_t stride = ((size_t)n + 1) * 4;
-    for (size_t f = 0, up = (size_t)d * 4, down = (size_t)d * n * 4; f < n - d; f++, up += stride, down += stride)
-        for (uint32_t c = 0; c < 4; c++) {
-            to[up + c] = from[up + c];
-            to[down + c] = from[down + c];
-        }
+    const entry4_t *a = (const entry4_t *)from;
+    entry4_t *b = (entry4_t *)to;
+    for (size_t f = 0, up = d, down = (size_t)d * n; f < n - d; f++, up += n + 1, down += n + 1) {
+        b[up] = a[up];
+        b[down] = a[down];
+    }
 }
 #endif
 
