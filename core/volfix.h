@@ -12,7 +12,8 @@
  *   vf_renderer_set_tf          when the transfer function changes: classification and run-length encoding
  *   vf_renderer_begin           per frame: factor the view; bring the tables up to date for its slab length
  *   vf_renderer_build_table_part  (threads only) the parts of a stale pre-integrated table, side by side
- *   vf_renderer_composite_band  per band of intermediate rows (threads may run bands at once)
+ *   vf_renderer_thread_table_begin  (threads only) a thread's copy of a table built as read, before its bands
+ *   vf_renderer_composite_band  per band of intermediate rows (threads may run bands at once; _in with a copy)
  *   vf_renderer_warp_band       per band of output rows (threads may run bands at once)
  * vf_renderer_draw runs a whole frame on the calling thread.
  */
