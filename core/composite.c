@@ -48,7 +48,8 @@ size_t vfi_band_scratch_bytes(const vf_renderer_t *r, uint32_t rows)
     return bytes + 2 * SCRATCH_ALIGN + 2 * rows * (sizeof(row_visits_t) + sizeof(vfi_span_t) * visits_capacity(r->max_int_w));
 }
 
-vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes)
+vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes,
+                               const vfi_demand_t *own)
 {
     const vf_factor_t *f = &r->factor;
     const vfi_layout_t *l = &r->layout[f->k_axis];
@@ -90,6 +91,12 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     job.cls = &r->cls;
     job.row = l->row;
     job.lookup = r->lookup;
+#if VF_TABLE_ON_DEMAND
+    if (own) { /* a thread's copy of the table: the shared table's format, in other memory */
+        job.lookup.q15 = own->out.q15;
+        job.lookup.lit_q15 = own->out.lit_q15;
+    }
+#endif
     job.bilinear = r->params.lookup != VF_LOOKUP_NEAREST; /* preint2's trilinear: its last slab's 2D lookup */
     job.sample_shift = r->params.sample_bits ? 32 - r->params.sample_bits : 0;
     job.inter_shift = 16 - r->params.intermediate_bits;
@@ -113,6 +120,10 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
     job.depth_from_tau = job.lookup.q15 && r->params.table_bits == 16 && r->params.correction != VF_CORRECTION_LUT;
 #if VF_TABLE_ON_DEMAND
     job.demand = r->table_unbuilt ? &r->demand : NULL; /* only for the plain loop without partial slabs */
+    if (own) /* the thread's copy (its lookup set above) */
+        job.demand = own;
+#else
+    (void)own;
 #endif
     slice_place_t place[3];
 

@@ -976,6 +976,9 @@ void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, ui
     demand->out = out;
     demand->slab_q16 = slab_q16;
     demand->visible_count = list_intervals(cls, scratch, &demand->grey);
+    demand->fill = NULL;
+    demand->built = NULL;
+    demand->context = NULL;
 }
 
 /* Entry (f, b)'s block of its diagonal r = |b - f| (build_block): the window lo .. lo+r-1, lo = min(f, b), gives
@@ -987,6 +990,19 @@ void vfi_preint_demand_entry(const vfi_demand_t *demand, uint32_t f, uint32_t b)
     const uint32_t lo = f < b ? f : b, r = f < b ? b - f : f - b;
     if (r == 0) /* the diagonal itself: built at begin */
         return;
+    if (demand->fill) { /* a thread's own copy: whole diagonals, which the other threads' copies can take */
+        if (demand->fill(demand->context, r))
+            return;
+        if (vfi_table_out_lit(demand->out))
+            build_diagonal_lit(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->grey,
+                               demand->out, r);
+        else
+            build_diagonal(demand->cls, demand->slab_q16, demand->scratch, demand->visible_count, demand->grey,
+                           demand->out, r);
+        if (demand->built)
+            demand->built(demand->context, r);
+        return;
+    }
     const vfi_table_scratch_t *scratch = demand->scratch;
     diagonal_t d = diagonal(scratch, demand->out, demand->cls->n, r);
     const uint32_t s0 = lo - lo % r;

@@ -16,7 +16,7 @@ static size_t table_entries(const vf_params_t *p);
 static size_t table_bytes(const vf_params_t *p);
 static bool has_view_table(const vf_params_t *p);
 static vf_status_t encode_runs(vf_renderer_t *r);
-static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread);
+static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread, bool thread_tables);
 #if VF_TABLE_ON_DEMAND
 static bool on_demand(const vf_renderer_t *r);
 #endif
@@ -330,7 +330,7 @@ vf_status_t vf_renderer_begin(vf_renderer_t *r, const vf_frame_t *frame)
         return s;
     if ((size_t)r->factor.int_w * r->factor.int_h > r->intermediate_max)
         return VF_ERR_NOMEM; /* an intermediate image reserved for smaller views (vf_prebuilt_t) */
-    update_tables(r, parts, frame->one_thread);
+    update_tables(r, parts, frame->one_thread, frame->thread_tables);
 #if VF_LIGHTING
     if (r->lit)
         update_shading(r, &frame->view);
@@ -410,7 +410,136 @@ vf_status_t vf_renderer_composite_band(const vf_renderer_t *r, uint32_t v0, uint
         return VF_ERR_STATE; /* a part of the table has not been built */
     if (v0 >= v1 || v1 > r->factor.int_h)
         return VF_ERR_ARG;
-    return vfi_composite_band(r, v0, v1, scratch, bytes);
+#if VF_TABLE_ON_DEMAND
+    if (r->thread_tables)
+        return VF_ERR_STATE; /* the frame's table is in the threads' copies: vf_renderer_composite_band_in */
+#endif
+    return vfi_composite_band(r, v0, v1, scratch, bytes, NULL);
+}
+
+/* ---------------------------------------------------------------------------------------------------------- */
+/* Threads' copies of a table built as read (volfix.h, vf_thread_table_t). A copy's memory holds its state (the
+ * demand, its scratch's description), the 2D table, the front-weighted table with lighting, and the scratch. */
+
+typedef struct thread_head {
+    vfi_demand_t demand;
+    vfi_table_scratch_t scratch;
+} thread_head_t;
+
+#if VF_TABLE_ON_DEMAND
+/* Diagonal d of an n x n table of four values an entry: entries (f, f + d) and (f + d, f), each copied as one
+ * object (as preint.c's builder copies them), a move where four values were four. */
+typedef struct entry4 {
+    uint16_t v[4];
+} entry4_t;
+
+static void copy_diagonal(const uint16_t *from, uint16_t *to, uint32_t n, uint32_t d)
+{
+    const entry4_t *a = (const entry4_t *)from;
+    entry4_t *b = (entry4_t *)to;
+    for (size_t f = 0, up = d, down = (size_t)d * n; f < n - d; f++, up += n + 1, down += n + 1) {
+        b[up] = a[up];
+        b[down] = a[down];
+    }
+}
+#endif
+
+size_t vf_renderer_thread_table_bytes(const vf_renderer_t *r)
+{
+#if VF_TABLE_ON_DEMAND
+    const vf_params_t *p = r ? &r->params : NULL;
+    if (!p || p->mode != VF_MODE_PREINT1 || p->correction != VF_CORRECTION_REBUILD || p->table_bits == 8)
+        return 0; /* never built as read (on_demand) */
+    return VFI_ALIGN + vfi_arena_block(sizeof(thread_head_t)) + vfi_arena_block(table_entries(p) * 4 * 2) +
+           lit_table_bytes(p) + scratch_bytes(p);
+#else
+    (void)r;
+    return 0;
+#endif
+}
+
+#if VF_TABLE_ON_DEMAND
+/* The copy's state at the start of its memory (aligned as the arena aligns it), or NULL when it is too small. */
+static thread_head_t *thread_head(const vf_renderer_t *r, const vf_thread_table_t *t)
+{
+    if (!t->memory || t->bytes < vf_renderer_thread_table_bytes(r))
+        return NULL;
+    vf_arena_t arena;
+    vf_arena_init(&arena, t->memory, t->bytes);
+    return vfi_arena_alloc(&arena, sizeof(thread_head_t));
+}
+#endif
+
+vf_status_t vf_renderer_thread_table_begin(const vf_renderer_t *r, const vf_thread_table_t *t)
+{
+    if (!r || !t)
+        return VF_ERR_NULL;
+    if (!r->have_frame)
+        return VF_ERR_STATE;
+#if VF_TABLE_ON_DEMAND
+    if (!r->thread_tables)
+        return VF_OK; /* the frame reads the shared table */
+    if (!t->memory)
+        return VF_ERR_NULL;
+    if (t->bytes < vf_renderer_thread_table_bytes(r))
+        return VF_ERR_NOMEM;
+    vf_arena_t arena;
+    vf_arena_init(&arena, t->memory, t->bytes);
+    thread_head_t *h = vfi_arena_alloc(&arena, sizeof *h);
+    vfi_table_out_t out = table_out(r);
+    out.q15 = vfi_arena_alloc(&arena, table_entries(&r->params) * 4 * 2);
+    if (out.lit_q15)
+        out.lit_q15 = vfi_arena_alloc(&arena, table_entries(&r->params) * 4 * 2);
+    if (!h || !out.q15 || (table_out(r).lit_q15 && !out.lit_q15) || scratch_alloc(&r->params, &h->scratch, &arena) != VF_OK)
+        return VF_ERR_NOMEM; /* not with the bytes promised */
+    vfi_preint_demand_begin(&h->demand, &r->cls, r->factor.slab_q16, &h->scratch, out);
+    h->demand.fill = t->fill;
+    h->demand.built = t->built;
+    h->demand.context = t->context;
+#endif
+    return VF_OK;
+}
+
+vf_status_t vf_renderer_composite_band_in(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch,
+                                          size_t bytes, const vf_thread_table_t *t)
+{
+    if (!r || !scratch || !t)
+        return VF_ERR_NULL;
+#if VF_TABLE_ON_DEMAND
+    if (r->have_frame && r->thread_tables) {
+        const thread_head_t *h = thread_head(r, t);
+        if (!h)
+            return VF_ERR_NOMEM;
+        if (v0 >= v1 || v1 > r->factor.int_h)
+            return VF_ERR_ARG;
+        return vfi_composite_band(r, v0, v1, scratch, bytes, &h->demand);
+    }
+#endif
+    return vf_renderer_composite_band(r, v0, v1, scratch, bytes);
+}
+
+vf_status_t vf_renderer_copy_diagonal(const vf_renderer_t *r, const vf_thread_table_t *from,
+                                      const vf_thread_table_t *to, uint32_t d)
+{
+    if (!r || !from || !to)
+        return VF_ERR_NULL;
+#if VF_TABLE_ON_DEMAND
+    if (!r->have_frame || !r->thread_tables)
+        return VF_ERR_STATE;
+    const thread_head_t *a = thread_head(r, from), *b = thread_head(r, to);
+    const uint32_t n = r->params.table_size;
+    if (!a || !b)
+        return VF_ERR_NOMEM;
+    if (d >= n)
+        return VF_ERR_ARG;
+    copy_diagonal(a->demand.out.q15, b->demand.out.q15, n, d);
+    if (b->demand.out.lit_q15)
+        copy_diagonal(a->demand.out.lit_q15, b->demand.out.lit_q15, n, d);
+    return VF_OK;
+#else
+    (void)d;
+    return VF_ERR_STATE;
+#endif
 }
 
 vf_status_t vf_renderer_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint32_t y0, uint32_t y1)
@@ -426,7 +555,7 @@ vf_status_t vf_renderer_draw(vf_renderer_t *r, const vf_view_t *view, const vf_i
 {
     if (!image || !view)
         return VF_ERR_NULL;
-    const vf_frame_t frame = {*view, image->width, image->height, 0, false};
+    const vf_frame_t frame = {*view, image->width, image->height, 0, false, false};
     vf_status_t s = vf_renderer_begin(r, &frame);
     if (s == VF_OK)
         s = vf_renderer_composite_band(r, 0, r->factor.int_h, scratch, bytes);
@@ -462,6 +591,18 @@ const uint16_t *vfi_renderer_preint_table(const vf_renderer_t *r)
     return r && r->tables_valid && tables_complete(r) && r->params.table_bits != 8 && has_2d_table(&r->params)
                ? r->table
                : NULL;
+}
+
+const uint16_t *vfi_renderer_thread_table(const vf_renderer_t *r, const vf_thread_table_t *t)
+{
+#if VF_TABLE_ON_DEMAND
+    const thread_head_t *h = r && t && r->have_frame && r->thread_tables ? thread_head(r, t) : NULL;
+    return h ? h->demand.out.q15 : NULL;
+#else
+    (void)r;
+    (void)t;
+    return NULL;
+#endif
 }
 
 const uint16_t *vfi_renderer_order2_table(const vf_renderer_t *r)
@@ -768,7 +909,7 @@ static vf_status_t encode_runs(vf_renderer_t *r)
  * lut correction they are built for length 1 once per transfer function and the lut follows the view, applied to
  * every entry of a view table if there is one. A 2D table asked for in parts is left to vf_renderer_build_table_part
  * (its diagonals, or only their view-table entries), and counts as built once every part has run. */
-static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
+static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread, bool thread_tables)
 {
     const uint32_t slab = r->factor.slab_q16;
     const bool lut = r->params.correction == VF_CORRECTION_LUT, view = VF_VIEW_TABLE && r->view_table;
@@ -797,8 +938,18 @@ static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread)
 #endif
 #if VF_TABLE_ON_DEMAND
     const bool demand = one_thread && on_demand(r);
+    /* threads' copies built as read: the shared table is left as it is, stale, so that the next frame that reads
+     * it builds it (the lut and view tables are never built as read: on_demand) */
+    r->thread_tables = thread_tables && !one_thread && on_demand(r);
+    if (r->thread_tables) {
+        r->tables_valid = false;
+        if (VF_MAX_TABLE_PARTS > 1)
+            r->table_parts = 0;
+        return;
+    }
 #else
     (void)one_thread;
+    (void)thread_tables;
 #endif
     bool build = !r->tables_valid || !tables_complete(r) || r->tables_generation != r->tf_generation ||
                  r->tables_slab_q16 != table_slab;

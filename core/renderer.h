@@ -66,6 +66,8 @@ struct vf_renderer {
     bool table_unbuilt;     /* the 2D table has diagonals marked unbuilt, which compositing builds as it reads
                              * them, with demand (vf_frame_t.one_thread) */
     vfi_demand_t demand;
+    bool thread_tables;     /* the frame's bands read their threads' copies of the table (vf_frame_t.thread_tables),
+                             * each built as read; the shared one is stale */
 #endif
     vfi_lookup_ctx_t lookup;
 
@@ -141,7 +143,9 @@ vf_status_t vfi_prebuilt_check(const vf_params_t *p, const vf_volume_t *vol, con
 bool vfi_prebuilt_adopt_runs(vf_renderer_t *r);
 
 /* composite.c */
-vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes);
+/* own: a thread's copy of the table built as read (vf_thread_table_t), or NULL for the shared table */
+vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1, void *scratch, size_t bytes,
+                               const vfi_demand_t *own);
 size_t vfi_band_scratch_bytes(const vf_renderer_t *r, uint32_t band_rows);
 
 /* warp.c */

@@ -202,6 +202,10 @@ typedef struct vfi_demand {
     vfi_table_out_t out;
     uint32_t slab_q16, visible_count;
     bool grey;                          /* every interval's weight grey: preint.c builds one colour channel */
+    /* a thread's copy (vf_thread_table_t): asked first, told after a build; NULL otherwise (begin sets them so) */
+    bool (*fill)(void *context, uint32_t diagonal);
+    void (*built)(void *context, uint32_t diagonal);
+    void *context;
 } vfi_demand_t;
 void vfi_preint_demand_begin(vfi_demand_t *demand, const vfi_classify_t *cls, uint32_t slab_q16,
                              const vfi_table_scratch_t *scratch, vfi_table_out_t out);

@@ -12,7 +12,8 @@
  *   vf_renderer_set_tf          when the transfer function changes: classification and run-length encoding
  *   vf_renderer_begin           per frame: factor the view; bring the tables up to date for its slab length
  *   vf_renderer_build_table_part  (threads only) the parts of a stale pre-integrated table, side by side
- *   vf_renderer_composite_band  per band of intermediate rows (threads may run bands at once)
+ *   vf_renderer_thread_table_begin  (threads only) a thread's copy of a table built as read, before its bands
+ *   vf_renderer_composite_band  per band of intermediate rows (threads may run bands at once; _in with a copy)
  *   vf_renderer_warp_band       per band of output rows (threads may run bands at once)
  * vf_renderer_draw runs a whole frame on the calling thread.
  */
@@ -349,6 +350,10 @@ typedef struct vf_frame {
                              * then a stale 2D table is built as compositing first reads each block of its
                              * diagonals, only the blocks the frame uses (the default preint1 path; otherwise, and in
                              * builds without VF_TABLE_ON_DEMAND, as begin would). The same pixels either way. */
+    bool thread_tables;     /* bands run on threads, each thread with its own copy of the 2D table built as read
+                             * (vf_thread_table_t): where one_thread would build the table as read, each copy is
+                             * built as its thread's bands read it, so that no thread reads an entry another is
+                             * writing; elsewhere as table_parts says. */
 } vf_frame_t;
 
 /* Factor the frame's view and bring the tables up to date. VF_ERR_ARG for table_parts above
@@ -373,6 +378,29 @@ size_t vf_renderer_band_scratch_bytes(const vf_renderer_t *renderer, uint32_t ba
  * different threads, each with its own scratch; every band must finish before any warp band starts. */
 vf_status_t vf_renderer_composite_band(const vf_renderer_t *renderer, uint32_t v0, uint32_t v1, void *scratch,
                                        size_t scratch_bytes);
+
+/* A thread's copy of the 2D table for frames begun with thread_tables: memory of vf_renderer_thread_table_bytes (0:
+ * this renderer's frames never build their table as read), and what the core calls when one of the thread's bands
+ * meets a diagonal its copy lacks: fill, which returns true when it has filled the diagonal itself (copied from
+ * another thread's copy with vf_renderer_copy_diagonal) and false to have the core build it, then built once the
+ * core has. Either may be NULL; both run on the band's thread. vf_renderer_thread_table_begin makes the copy ready
+ * for the frame begun last (every diagonal but the main one unbuilt), on its thread before its first band, and
+ * does nothing when that frame's table is shared. vf_renderer_composite_band_in is vf_renderer_composite_band
+ * reading the thread's copy, or the shared table when the frame has one. Diagonal d: the entries (f, f + d) and
+ * (f + d, f). */
+typedef struct vf_thread_table {
+    void *memory;
+    size_t bytes;
+    bool (*fill)(void *context, uint32_t diagonal);
+    void (*built)(void *context, uint32_t diagonal);
+    void *context;
+} vf_thread_table_t;
+size_t vf_renderer_thread_table_bytes(const vf_renderer_t *renderer);
+vf_status_t vf_renderer_thread_table_begin(const vf_renderer_t *renderer, const vf_thread_table_t *table);
+vf_status_t vf_renderer_composite_band_in(const vf_renderer_t *renderer, uint32_t v0, uint32_t v1, void *scratch,
+                                          size_t scratch_bytes, const vf_thread_table_t *table);
+vf_status_t vf_renderer_copy_diagonal(const vf_renderer_t *renderer, const vf_thread_table_t *from,
+                                      const vf_thread_table_t *to, uint32_t diagonal);
 
 /* Warp final rows [y0, y1) into image (whose size must equal the frame's width and height). */
 vf_status_t vf_renderer_warp_band(const vf_renderer_t *renderer, const vf_image_t *image, uint32_t y0, uint32_t y1);

@@ -25,6 +25,9 @@ void vfi_arena_fail_after(vf_arena_t *arena, uint32_t count);
 const uint16_t *vfi_renderer_intermediate(const vf_renderer_t *renderer);
 const uint16_t *vfi_renderer_point_table(const vf_renderer_t *renderer);
 const uint16_t *vfi_renderer_preint_table(const vf_renderer_t *renderer);
+/* A thread's copy of the 2D table (vf_thread_table_t) in the frame begun last, whose built diagonals are the
+ * shared table's; NULL when the frame shares its table or the memory is short. */
+const uint16_t *vfi_renderer_thread_table(const vf_renderer_t *renderer, const vf_thread_table_t *table);
 /* preint2's 3D table (Q1.15 r, g, b, a, [(front * N2 + middle) * N2 + back]) and, for lit frames, its eight front-
  * and back-weighted values an entry; NULL as above. (vfi_renderer_preint_table is its 2D table, the last slab's.) */
 const uint16_t *vfi_renderer_order2_table(const vf_renderer_t *renderer);

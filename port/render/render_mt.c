@@ -2,35 +2,80 @@
 /* render_mt.c: the core renderer with malloc'd memory and pthreads (see render_mt.h). */
 #include "render_mt.h"
 
+#include <limits.h>
+#include <linux/futex.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/syscall.h>
 #include <time.h>
+#include <unistd.h>
 
-#define WARP_BAND 16
+/* Compositing bands: at most BAND_MOST rows (a slab's set-up is paid once a band, so one thread takes bands this
+ * tall), and with threads a share of the rows left, never fewer than BAND_FEWEST (next_band). Warp bands likewise,
+ * in output rows. */
+#define BAND_MOST 32
+#define BAND_FEWEST 8
+#define WARP_MOST 16
+#define WARP_FEWEST 4
+/* Parts of a stale table a thread: more than one, so that a thread that finishes its part early takes another */
+#define PARTS_PER_THREAD 4
+/* How long a thread that waits for the others polls before it sleeps: longer than a frame's usual imbalance and
+ * the main thread's work between frames (a few tens of microseconds), short enough not to hold a shared core. */
+#define SPIN_NS 60000
+/* A diagonal's state in the threads' copies of a table built as read (struct vfp_pool): 0 no copy has it,
+ * BUILDING a thread is building it, READY | t thread t's copy has it */
+#define BUILDING 0x100u
+#define READY 0x200u
 
-typedef enum stage { STAGE_TABLES, STAGE_COMPOSITE, STAGE_WARP } stage_t;
+enum { FAIL_TABLES, FAIL_BANDS };
 
-typedef struct band_work {
+/* What one frame gives every thread: the stages run one after another, each shared out by a counter. */
+typedef struct frame_work {
     vfp_render_t *r;
     const vf_image_t *image;
-    atomic_uint next_band;
-    uint32_t bands, rows;    /* bands (table parts) to share out; rows of the stage */
-    stage_t stage;
-    atomic_int status;       /* the first failure, VF_OK otherwise */
-} band_work_t;
+    uint32_t table_parts;       /* parts of a stale table to build before compositing, 0 when it is up to date */
+    uint32_t int_rows, out_rows; /* intermediate rows to composite, output rows to warp */
+    int threads;                /* the threads working on it, the calling one included */
+    _Alignas(64) atomic_uint next_part;
+    atomic_uint next_row, next_warp;
+    atomic_int status[2];       /* the first failure of the table's parts, and of the bands; VF_OK otherwise */
+    double t_tables, t_composite; /* when the stages ended, on the calling thread's clock */
+} frame_work_t;
 
 typedef struct worker {
-    band_work_t *work;
-    int index;
+    struct vfp_pool *pool;
+    int index;                  /* 1 .. workers; the calling thread is 0 */
 } worker_t;
 
+struct vfp_pool {
+    pthread_t ids[VFP_MAX_THREADS];
+    worker_t args[VFP_MAX_THREADS];
+    int workers;
+    frame_work_t work;
+    /* each word a line of its own: the threads poll them while others write the counters */
+    _Alignas(64) atomic_uint posted; /* frames posted so far; quit is set before the last post */
+    atomic_int quit;
+    _Alignas(64) atomic_uint arrived; /* threads at the barrier in this phase */
+    _Alignas(64) atomic_uint phase;   /* barriers passed */
+    _Alignas(64) atomic_int sleepers; /* threads asleep on a futex, or about to be */
+    _Alignas(64) atomic_uint diagonal[VF_MAX_TABLE]; /* per diagonal: 0, BUILDING or READY | t */
+};
+
 static vfp_status_t create_core(vfp_render_t *r, size_t arena_bytes, char *err, size_t errlen);
+static uint32_t table_parts(int threads);
 static vfp_status_t apply(vfp_render_t *r, int window_changed, char *err, size_t errlen);
-static void *run_bands(void *arg);
-static vf_status_t spread(vfp_render_t *r, band_work_t *work);
+static struct vfp_pool *pool_start(int threads);
+static void pool_stop(struct vfp_pool *pool);
+static void *worker_main(void *arg);
+static void run_frame(struct vfp_pool *pool, frame_work_t *work, int index);
+static bool fill_diagonal(void *context, uint32_t diagonal);
+static void built_diagonal(void *context, uint32_t diagonal);
+static void barrier(struct vfp_pool *pool);
+static void wait_while(struct vfp_pool *pool, atomic_uint *word, unsigned value);
+static void wake_all(struct vfp_pool *pool, atomic_uint *word);
 
 double vfp_now_ms(void)
 {
@@ -46,10 +91,7 @@ vfp_status_t vfp_render_open(vfp_render_t *r, const vf_params_t *params, const v
     r->params = *params;
     r->volume = volume;
     r->threads = threads < 1 ? 1 : threads > VFP_MAX_THREADS ? VFP_MAX_THREADS : threads;
-    /* Taller bands pay a slab's or slice's set-up fewer times a frame, so one thread takes 32 rows at a time;
-     * shorter ones share the work out more evenly, so more threads take fewer: about ten bands a thread for a
-     * 300-row intermediate image, never fewer than 8 rows. */
-    r->band_rows = 32 / (uint32_t)r->threads < 8 ? 8 : 32 / (uint32_t)r->threads;
+    r->band_rows = BAND_MOST;
     size_t fixed;
     vf_status_t s = vf_renderer_bytes(params, volume, &fixed);
     if (s != VF_OK) {
@@ -59,6 +101,8 @@ vfp_status_t vfp_render_open(vfp_render_t *r, const vf_params_t *params, const v
     /* The run lists come on top; a quarter of the fixed part is usually plenty, and set_tf grows it if not. */
     if (create_core(r, fixed + fixed / 4, err, errlen))
         return VFP_ERR;
+    if (r->threads > 1)
+        r->pool = pool_start(r->threads); /* NULL if no worker would start: slower, not wrong */
     return VFP_OK;
 }
 
@@ -82,49 +126,66 @@ vfp_status_t vfp_render_set_tf(vfp_render_t *r, const vf_tf_point_t *points, uin
     return apply(r, 0, err, errlen);
 }
 
+/* One wake-up of the workers a frame: a stale table's parts, then the compositing bands, then the warp bands, with
+ * a barrier between stages (each reads what the one before wrote). */
 vfp_status_t vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_image_t *image, char *err, size_t errlen)
 {
     double t0 = vfp_now_ms();
-    /* with threads, a table that went stale is built in a part a thread; on one, the bands (one after another)
-     * build the diagonals they read */
+    /* on one thread the bands (one after another) build the diagonals of a stale table they read; with threads
+     * each in its own copy of the table, or where the core cannot, the table is built first in parts */
+    struct vfp_pool *pool = r->pool;
     const vf_frame_t frame = {.view = *view, .width = image->width, .height = image->height,
-                              .table_parts = r->threads > 1 ? (uint32_t)r->threads : 0, .one_thread = r->threads == 1};
+                              .table_parts = pool ? table_parts(r->threads) : 0, .one_thread = !pool,
+                              .thread_tables = pool && r->table_copy_bytes};
     vf_status_t s = vf_renderer_begin(r->core, &frame);
-    if (s == VF_OK && vf_renderer_table_parts(r->core)) {
-        band_work_t tables = {.r = r, .image = image, .stage = STAGE_TABLES};
-        tables.bands = vf_renderer_table_parts(r->core);
-        s = spread(r, &tables);
-    }
     if (s != VF_OK) {
         snprintf(err, errlen, "cannot begin a frame: %s", vf_status_text(s));
         return VFP_ERR;
     }
-    double t1 = vfp_now_ms();
-    const vf_factor_t *f = vf_renderer_factor(r->core);
-    band_work_t work = {.r = r, .image = image, .rows = f->int_h, .stage = STAGE_COMPOSITE};
-    work.bands = (f->int_h + r->band_rows - 1) / r->band_rows;
-    s = spread(r, &work);
-    double t2 = vfp_now_ms();
-    if (s == VF_OK) {
-        band_work_t warp = {.r = r, .image = image, .rows = image->height, .stage = STAGE_WARP};
-        warp.bands = (image->height + WARP_BAND - 1) / WARP_BAND;
-        s = spread(r, &warp);
+    frame_work_t local, *work = pool ? &pool->work : &local;
+    work->r = r;
+    work->image = image;
+    work->table_parts = vf_renderer_table_parts(r->core);
+    work->int_rows = vf_renderer_factor(r->core)->int_h;
+    work->out_rows = image->height;
+    work->threads = pool ? pool->workers + 1 : 1;
+    atomic_init(&work->next_part, 0);
+    atomic_init(&work->next_row, 0);
+    atomic_init(&work->next_warp, 0);
+    atomic_init(&work->status[FAIL_TABLES], VF_OK);
+    atomic_init(&work->status[FAIL_BANDS], VF_OK);
+    if (pool) {
+        for (uint32_t d = 0; d < r->params.table_size && d < VF_MAX_TABLE; d++)
+            atomic_store_explicit(&pool->diagonal[d], 0, memory_order_relaxed); /* none built in any copy */
+        atomic_fetch_add(&pool->posted, 1); /* sequentially consistent: the work above is seen with it */
+        wake_all(pool, &pool->posted);
     }
+    run_frame(pool, work, 0);
     double t3 = vfp_now_ms();
+    s = (vf_status_t)atomic_load(&work->status[FAIL_TABLES]);
+    if (s != VF_OK) {
+        snprintf(err, errlen, "cannot begin a frame: %s", vf_status_text(s));
+        return VFP_ERR;
+    }
+    s = (vf_status_t)atomic_load(&work->status[FAIL_BANDS]);
     if (s != VF_OK) {
         snprintf(err, errlen, "cannot render a frame: %s", vf_status_text(s));
         return VFP_ERR;
     }
-    r->ms_tables = t1 - t0;
-    r->ms_composite = t2 - t1;
-    r->ms_warp = t3 - t2;
+    r->ms_tables = work->t_tables - t0;
+    r->ms_composite = work->t_composite - work->t_tables;
+    r->ms_warp = t3 - work->t_composite;
     return VFP_OK;
 }
 
 void vfp_render_close(vfp_render_t *r)
 {
-    for (int t = 0; t < VFP_MAX_THREADS; t++)
+    if (r->pool)
+        pool_stop(r->pool);
+    for (int t = 0; t < VFP_MAX_THREADS; t++) {
         free(r->scratch[t]);
+        free(r->table_copy[t]);
+    }
     free(r->arena_buf);
     memset(r, 0, sizeof *r);
 }
@@ -154,6 +215,17 @@ static vfp_status_t create_core(vfp_render_t *r, size_t arena_bytes, char *err, 
         r->scratch[t] = malloc(r->scratch_bytes);
         if (!r->scratch[t]) {
             snprintf(err, errlen, "out of memory for band scratch");
+            return VFP_ERR;
+        }
+    }
+    /* a copy of the table a thread, for frames that build it as read */
+    r->table_copy_bytes = r->threads > 1 ? vf_renderer_thread_table_bytes(r->core) : 0;
+    for (int t = 0; t < r->threads && r->table_copy_bytes; t++) {
+        free(r->table_copy[t]);
+        r->table_copy[t] = malloc(r->table_copy_bytes);
+        if (!r->table_copy[t]) {
+            snprintf(err, errlen, "out of memory for the threads' copies of the table (%zu KB each)",
+                     r->table_copy_bytes >> 10);
             return VFP_ERR;
         }
     }
@@ -189,49 +261,225 @@ static vfp_status_t apply(vfp_render_t *r, int window_changed, char *err, size_t
     return VFP_ERR;
 }
 
-static void *run_bands(void *arg)
+static uint32_t table_parts(int threads)
 {
-    worker_t *w = arg;
-    band_work_t *work = w->work;
-    vfp_render_t *r = work->r;
-    for (;;) {
-        unsigned band = atomic_fetch_add(&work->next_band, 1);
-        if (band >= work->bands || atomic_load(&work->status) != VF_OK)
-            break;
-        vf_status_t s;
-        if (work->stage == STAGE_TABLES) {
-            s = vf_renderer_build_table_part(r->core, band, r->scratch[w->index], r->scratch_bytes);
-        } else if (work->stage == STAGE_WARP) {
-            uint32_t y0 = band * WARP_BAND, y1 = y0 + WARP_BAND < work->rows ? y0 + WARP_BAND : work->rows;
-            s = vf_renderer_warp_band(r->core, work->image, y0, y1);
-        } else {
-            uint32_t v0 = band * r->band_rows, v1 = v0 + r->band_rows < work->rows ? v0 + r->band_rows : work->rows;
-            s = vf_renderer_composite_band(r->core, v0, v1, r->scratch[w->index], r->scratch_bytes);
-        }
-        if (s != VF_OK) {
-            int expected = VF_OK;
-            atomic_compare_exchange_strong(&work->status, &expected, (int)s);
-        }
-    }
-    return NULL;
+    const uint32_t parts = PARTS_PER_THREAD * (uint32_t)threads;
+    return parts < VF_MAX_TABLE_PARTS ? parts : VF_MAX_TABLE_PARTS;
 }
 
-static vf_status_t spread(vfp_render_t *r, band_work_t *work)
+/* ---------------------------------------------------------------------------------------------------------- */
+/* The workers. */
+
+static struct vfp_pool *pool_start(int threads)
 {
-    atomic_init(&work->next_band, 0);
-    atomic_init(&work->status, VF_OK);
-    worker_t workers[VFP_MAX_THREADS];
-    pthread_t ids[VFP_MAX_THREADS];
-    int started = 0;
-    for (int t = 1; t < r->threads; t++) {
-        workers[t] = (worker_t){work, t};
-        if (pthread_create(&ids[t], NULL, run_bands, &workers[t]) != 0)
+    struct vfp_pool *pool = aligned_alloc(64, (sizeof *pool + 63) / 64 * 64);
+    if (!pool)
+        return NULL;
+    memset(pool, 0, sizeof *pool);
+    atomic_init(&pool->posted, 0);
+    atomic_init(&pool->quit, 0);
+    atomic_init(&pool->arrived, 0);
+    atomic_init(&pool->phase, 0);
+    atomic_init(&pool->sleepers, 0);
+    for (int d = 0; d < VF_MAX_TABLE; d++)
+        atomic_init(&pool->diagonal[d], 0);
+    pool->args[0] = (worker_t){pool, 0}; /* the calling thread's, for its copy of the table */
+    for (int t = 1; t < threads; t++) {
+        pool->args[t] = (worker_t){pool, t};
+        if (pthread_create(&pool->ids[t], NULL, worker_main, &pool->args[t]) != 0)
             break; /* fewer threads is slower, not wrong */
-        started = t;
+        pool->workers = t;
     }
-    workers[0] = (worker_t){work, 0};
-    run_bands(&workers[0]);
-    for (int t = 1; t <= started; t++)
-        pthread_join(ids[t], NULL);
-    return (vf_status_t)atomic_load(&work->status);
+    if (pool->workers == 0) {
+        free(pool);
+        return NULL;
+    }
+    return pool;
+}
+
+static void pool_stop(struct vfp_pool *pool)
+{
+    atomic_store(&pool->quit, 1);
+    atomic_fetch_add(&pool->posted, 1);
+    wake_all(pool, &pool->posted);
+    for (int t = 1; t <= pool->workers; t++)
+        pthread_join(pool->ids[t], NULL);
+    free(pool);
+}
+
+static void *worker_main(void *arg)
+{
+    const worker_t *w = arg;
+    struct vfp_pool *pool = w->pool;
+    unsigned seen = 0;
+    for (;;) {
+        wait_while(pool, &pool->posted, seen);
+        seen++; /* one post a frame: the caller waits for the frame to end before it posts again */
+        if (atomic_load(&pool->quit))
+            return NULL;
+        run_frame(pool, &pool->work, w->index);
+    }
+}
+
+static void fail(atomic_int *status, vf_status_t s)
+{
+    int expected = VF_OK;
+    atomic_compare_exchange_strong(status, &expected, (int)s);
+}
+
+/* The next band of a stage, [*y0, *y1) of rows counted by cursor: most rows, or with threads a share of the rows
+ * left, at least fewest, so that the last bands are short and the threads finish close together. A band's size
+ * follows from its first row alone, so the bands are the same whichever thread takes them. Returns 0 when every
+ * row is taken. */
+static int next_band(const frame_work_t *work, atomic_uint *cursor, uint32_t rows, uint32_t most, uint32_t fewest,
+                     uint32_t *y0, uint32_t *y1)
+{
+    unsigned at = atomic_load_explicit(cursor, memory_order_relaxed);
+    for (;;) {
+        if (at >= rows)
+            return 0;
+        uint32_t left = rows - at, take = most;
+        if (work->threads > 1) {
+            take = left / (2 * (uint32_t)work->threads);
+            take = take > most ? most : take < fewest ? fewest : take;
+        }
+        take = take < left ? take : left;
+        if (atomic_compare_exchange_weak_explicit(cursor, &at, at + take, memory_order_relaxed,
+                                                  memory_order_relaxed)) {
+            *y0 = at;
+            *y1 = at + take;
+            return 1;
+        }
+    }
+}
+
+/* A thread's share of a frame. Every thread passes every barrier, a failure included (it only stops the claims),
+ * so that none waits for one that left. */
+static void run_frame(struct vfp_pool *pool, frame_work_t *work, int index)
+{
+    vfp_render_t *r = work->r;
+    void *scratch = r->scratch[index];
+    if (work->table_parts) {
+        for (;;) {
+            unsigned part = atomic_fetch_add_explicit(&work->next_part, 1, memory_order_relaxed);
+            if (part >= work->table_parts || atomic_load(&work->status[FAIL_TABLES]) != VF_OK)
+                break;
+            vf_status_t s = vf_renderer_build_table_part(r->core, part, scratch, r->scratch_bytes);
+            if (s != VF_OK)
+                fail(&work->status[FAIL_TABLES], s);
+        }
+        barrier(pool);
+    }
+    if (index == 0)
+        work->t_tables = vfp_now_ms();
+    const vf_thread_table_t copy = {r->table_copy[index], r->table_copy_bytes, fill_diagonal, built_diagonal,
+                                    pool ? &pool->args[index] : NULL};
+    if (pool && copy.memory) { /* a no-op when the frame's table is shared */
+        vf_status_t s = vf_renderer_thread_table_begin(r->core, &copy);
+        if (s != VF_OK)
+            fail(&work->status[FAIL_BANDS], s);
+    }
+    uint32_t v0, v1;
+    while (atomic_load(&work->status[FAIL_TABLES]) == VF_OK && atomic_load(&work->status[FAIL_BANDS]) == VF_OK &&
+           next_band(work, &work->next_row, work->int_rows, BAND_MOST, BAND_FEWEST, &v0, &v1)) {
+        vf_status_t s = pool && copy.memory
+                            ? vf_renderer_composite_band_in(r->core, v0, v1, scratch, r->scratch_bytes, &copy)
+                            : vf_renderer_composite_band(r->core, v0, v1, scratch, r->scratch_bytes);
+        if (s != VF_OK)
+            fail(&work->status[FAIL_BANDS], s);
+    }
+    barrier(pool);
+    if (index == 0)
+        work->t_composite = vfp_now_ms();
+    uint32_t y0, y1;
+    while (atomic_load(&work->status[FAIL_TABLES]) == VF_OK && atomic_load(&work->status[FAIL_BANDS]) == VF_OK &&
+           next_band(work, &work->next_warp, work->out_rows, WARP_MOST, WARP_FEWEST, &y0, &y1)) {
+        vf_status_t s = vf_renderer_warp_band(r->core, work->image, y0, y1);
+        if (s != VF_OK)
+            fail(&work->status[FAIL_BANDS], s);
+    }
+    barrier(pool); /* the frame ends when every thread has left it: the caller may then change anything */
+}
+
+/* A band of thread w met an unbuilt diagonal of its copy of the table: copied from another thread's copy that has
+ * it (true), or left to the core to build (false), claimed first so that the others copy it rather than build it
+ * too. When another thread is building it, this one builds it as well rather than wait: the same entries, to the
+ * bit, in its own copy. */
+static bool fill_diagonal(void *context, uint32_t d)
+{
+    const worker_t *w = context;
+    struct vfp_pool *pool = w->pool;
+    const vfp_render_t *r = pool->work.r;
+    unsigned state = atomic_load_explicit(&pool->diagonal[d], memory_order_acquire);
+    if (state == 0 && atomic_compare_exchange_strong_explicit(&pool->diagonal[d], &state, BUILDING,
+                                                              memory_order_acq_rel, memory_order_acquire))
+        return false;
+    if (!(state & READY))
+        return false;
+    const int from = (int)(state & 0xFFu);
+    const vf_thread_table_t a = {r->table_copy[from], r->table_copy_bytes, NULL, NULL, NULL},
+                            b = {r->table_copy[w->index], r->table_copy_bytes, NULL, NULL, NULL};
+    return vf_renderer_copy_diagonal(r->core, &a, &b, d) == VF_OK;
+}
+
+/* Thread w's copy has diagonal d now: the release makes its entries visible to a thread that reads the state. */
+static void built_diagonal(void *context, uint32_t d)
+{
+    const worker_t *w = context;
+    atomic_store_explicit(&w->pool->diagonal[d], READY | (unsigned)w->index, memory_order_release);
+}
+
+/* Every thread of the pool waits here until all have come; the last one in lets them go. NULL: one thread. */
+static void barrier(struct vfp_pool *pool)
+{
+    if (!pool)
+        return;
+    const unsigned phase = atomic_load(&pool->phase); /* it cannot move before this thread arrives */
+    if (atomic_fetch_add(&pool->arrived, 1) + 1 == (unsigned)pool->workers + 1) {
+        atomic_store(&pool->arrived, 0);
+        atomic_fetch_add(&pool->phase, 1);
+        wake_all(pool, &pool->phase);
+    } else {
+        wait_while(pool, &pool->phase, phase);
+    }
+}
+
+static inline void cpu_relax(void)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#elif defined(__aarch64__) || (defined(__arm__) && defined(__ARM_ARCH) && __ARM_ARCH >= 7)
+    __asm__ __volatile__("yield");
+#endif
+}
+
+/* Wait while *word holds value: poll for up to SPIN_NS (a frame's stages hand over within microseconds, and a
+ * futex's sleep and wake-up cost more than that), then sleep on the futex. The sleeper count tells wake_all whether
+ * anyone needs the system call; both sides use sequentially consistent operations, so either the waker sees the
+ * count or the sleeper sees the new value (the kernel checks it again as it goes to sleep). */
+static void wait_while(struct vfp_pool *pool, atomic_uint *word, unsigned value)
+{
+    double until = 0;
+    for (unsigned spins = 0; atomic_load_explicit(word, memory_order_acquire) == value; spins++) {
+        if (spins % 64 == 0) {
+            double now = vfp_now_ms();
+            if (spins == 0)
+                until = now + SPIN_NS / 1e6;
+            else if (now > until)
+                break;
+        }
+        cpu_relax();
+    }
+    while (atomic_load(word) == value) {
+        atomic_fetch_add(&pool->sleepers, 1);
+        if (atomic_load(word) == value)
+            syscall(SYS_futex, (unsigned *)word, FUTEX_WAIT_PRIVATE, value, NULL, NULL, 0);
+        atomic_fetch_sub(&pool->sleepers, 1);
+    }
+}
+
+static void wake_all(struct vfp_pool *pool, atomic_uint *word)
+{
+    if (atomic_load(&pool->sleepers) > 0)
+        syscall(SYS_futex, (unsigned *)word, FUTEX_WAKE_PRIVATE, INT_MAX, NULL, NULL, 0);
 }

@@ -4,6 +4,13 @@
  * core's own queries (grown when a transfer function needs longer run lists), a stale pre-integrated table
  * built in a part a thread, and compositing and warping spread over threads in bands. The same pixels for any
  * thread count: each table entry is built by one part, each pixel computed by one band.
+ *
+ * Where one thread would build the 2D table as compositing reads it, a diagonal at a time, threads do the same in
+ * a copy each, and a thread that needs a diagonal another has built copies it instead of building it again.
+ *
+ * The threads live as long as the renderer: vfp_render_open starts threads - 1 workers, each frame wakes them
+ * once, and the calling thread works beside them; vfp_render_close joins them. A renderer is used by one thread
+ * at a time (its caller).
  */
 #ifndef VFP_RENDER_MT_H
 #define VFP_RENDER_MT_H
@@ -15,6 +22,8 @@
 #include "volfix.h"
 
 #define VFP_MAX_THREADS 16
+
+struct vfp_pool; /* render_mt.c: the workers and what a frame gives them */
 
 typedef struct vfp_render {
     vf_params_t params;
@@ -31,6 +40,9 @@ typedef struct vfp_render {
     uint32_t band_rows;               /* intermediate rows per compositing band */
     size_t scratch_bytes;
     void *scratch[VFP_MAX_THREADS];
+    size_t table_copy_bytes;          /* with threads: each thread's copy of a table built as read (0: none) */
+    void *table_copy[VFP_MAX_THREADS];
+    struct vfp_pool *pool;            /* the workers, NULL with one thread */
     double ms_tables, ms_composite, ms_warp; /* the last frame's stages (begin includes table rebuilds) */
     double ms_classify;                      /* the last window or transfer-function change */
 } vfp_render_t;

@@ -5,7 +5,9 @@
  * vf_render's to the bit, for table sizes from the smallest to the largest, the 10-, 12- and 16-bit formats, both
  * buffers, bands one after another, views with the same slab length (the table kept, more diagonals built) and a
  * transfer function changed between frames; the table is not handed out while diagonals are unbuilt, and a frame
- * begun for threads afterwards builds it whole; the options it does not cover build the whole table.
+ * begun for threads afterwards builds it whole; the options it does not cover build the whole table;
+ * threads' copies of the table (vf_frame_t.thread_tables), bands taking turns between two copies that copy
+ * diagonals from each other: the same pictures, each diagonal built once, and the calls' errors.
  */
 #include <stdint.h>
 #include <stdlib.h>
@@ -202,5 +204,175 @@ static void demand_not_asked(void)
     }
 }
 
-CHECK_CASES(CHECK_CASE(demand_equals_whole), CHECK_CASE(demand_table_state), CHECK_CASE(demand_not_asked));
+
+/* Two threads' copies of the table, the bands taking turns between them on this thread: each copy asks the other
+ * for a diagonal before building it (vf_thread_table_t.fill), as render_mt.c's threads do through their claims. */
+typedef struct copy_ctx {
+    vf_renderer_t *r;
+    const vf_thread_table_t *tables;
+    int self;
+    int *owner;            /* per diagonal: 1 + the copy that built it, 0 none */
+    bool has[1024];        /* the diagonals this copy built or copied */
+    int builds, copies, twice; /* twice: asked for a diagonal it has, or built one built already */
+} copy_ctx_t;
+
+static bool fill_from_other(void *context, uint32_t d)
+{
+    copy_ctx_t *c = context;
+    if (!c->owner[d])
+        return false;
+    c->twice += c->owner[d] - 1 == c->self;
+    c->copies++;
+    c->has[d] = true;
+    return vf_renderer_copy_diagonal(c->r, &c->tables[c->owner[d] - 1], &c->tables[c->self], d) == VF_OK;
+}
+
+static void note_built(void *context, uint32_t d)
+{
+    copy_ctx_t *c = context;
+    c->twice += c->owner[d] != 0;
+    c->owner[d] = 1 + c->self;
+    c->has[d] = true;
+    c->builds++;
+}
+
+static void thread_copies(void)
+{
+    static const struct {
+        uint32_t size, bits;
+        vf_buffer_t buffer;
+    } cases[] = {{2, 16, VF_BUFFER_SLICE}, {64, 16, VF_BUFFER_IMAGE}, {256, 16, VF_BUFFER_SLICE},
+                 {256, 12, VF_BUFFER_IMAGE}, {1024, 16, VF_BUFFER_SLICE}};
+    static unsigned char copy_mem[2][(1024 * 1024 * 4 * 2) + (1 << 20)];
+    fill_volume(true);
+    const vf_volume_t vol = {{NI, NJ, NK}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
+    vf_tf_point_t pts[3] = {{0, 65535, 20000, 0, 0}, {100 * 256, 0, 65535, 30000, 30000},
+                            {255 * 256, 65535, 0, 65535, 9000}};
+    vf_tf_t tf = {pts, 3};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        vf_params_t p;
+        vf_params_default(&p);
+        p.table_size = cases[c].size;
+        p.table_bits = cases[c].bits;
+        p.buffer = cases[c].buffer;
+        vf_arena_t aw, ag;
+        vf_renderer_t *want, *got;
+        CHECK_EQ(create(&want, &aw, arena_want, &p, &vol, &tf), VF_OK);
+        CHECK_EQ(create(&got, &ag, arena_got, &p, &vol, &tf), VF_OK);
+        const size_t bytes = vf_renderer_thread_table_bytes(got);
+        CHECK(bytes > 0 && bytes <= sizeof copy_mem[0]);
+        static int owner[1024];
+        copy_ctx_t ctx[2];
+        vf_thread_table_t tables[2];
+        for (int t = 0; t < 2; t++) {
+            memset(&ctx[t], 0, sizeof ctx[t]);
+            ctx[t].r = got, ctx[t].tables = tables, ctx[t].self = t, ctx[t].owner = owner;
+            tables[t] = (vf_thread_table_t){copy_mem[t], bytes, fill_from_other, note_built, &ctx[t]};
+        }
+        for (size_t v = 0; v < sizeof views / sizeof views[0]; v++) {
+            vf_image_t im = {want_px, W, H, W * 3, VF_FORMAT_RGB888};
+            CHECK_EQ(vf_renderer_draw(want, &views[v], &im, scratch, vf_renderer_band_scratch_bytes(want, H * 4)), VF_OK);
+            const vf_frame_t frame = {.view = views[v], .width = W, .height = H, .table_parts = 2, .thread_tables = true};
+            CHECK_EQ(vf_renderer_begin(got, &frame), VF_OK);
+            CHECK_EQ(vf_renderer_table_parts(got), 0); /* nothing to build before the bands */
+            memset(owner, 0, sizeof owner);
+            for (int t = 0; t < 2; t++) {
+                ctx[t].builds = ctx[t].copies = 0;
+                memset(ctx[t].has, 0, sizeof ctx[t].has);
+                CHECK_EQ(vf_renderer_thread_table_begin(got, &tables[t]), VF_OK);
+            }
+            const uint32_t h = vf_renderer_factor(got)->int_h;
+            CHECK_EQ(vf_renderer_composite_band(got, 0, h, scratch, sizeof scratch), VF_ERR_STATE); /* shared: stale */
+            for (uint32_t v0 = 0, b = 0; v0 < h; v0 += 3, b++) {
+                const uint32_t v1 = v0 + 3 < h ? v0 + 3 : h;
+                CHECK_EQ(vf_renderer_composite_band_in(got, v0, v1, scratch, sizeof scratch, &tables[b % 2]), VF_OK);
+            }
+            memset(got_px, 0, sizeof got_px);
+            vf_image_t gim = {got_px, W, H, W * 3, VF_FORMAT_RGB888};
+            CHECK_EQ(vf_renderer_warp_band(got, &gim, 0, H), VF_OK);
+            CHECK_MSG(memcmp(want_px, got_px, sizeof got_px) == 0, "table %u x %u bits, view %zu: pictures differ",
+                      cases[c].size, cases[c].bits, v);
+            CHECK_EQ(ctx[0].twice + ctx[1].twice, 0); /* each diagonal built once, asked for by a copy without it */
+            /* every diagonal a copy has, built or copied, is the whole table's (want's, built whole for this view) */
+            const uint32_t n = cases[c].size;
+            CHECK_EQ(begin_frame(want, &views[v], W, H, 1, false), VF_OK);
+            const uint16_t *whole = vfi_renderer_preint_table(want);
+            CHECK(whole != NULL);
+            for (int t = 0; t < 2 && whole; t++) {
+                const uint16_t *mine = vfi_renderer_thread_table(got, &tables[t]);
+                CHECK(mine != NULL);
+                int wrong = 0;
+                for (uint32_t f = 0; mine && f < n; f++)
+                    for (uint32_t b = 0; b < n; b++)
+                        if (ctx[t].has[f > b ? f - b : b - f] || f == b)
+                            wrong += memcmp(mine + ((size_t)f * n + b) * 4, whole + ((size_t)f * n + b) * 4, 8) != 0;
+                CHECK_MSG(wrong == 0, "table %u, view %zu, copy %d: %d entries differ", n, v, t, wrong);
+            }
+            if (cases[c].size >= 64) /* both copies worked, and shared */
+                CHECK_MSG(ctx[0].builds > 0 && ctx[1].builds + ctx[1].copies > 0 && ctx[0].copies + ctx[1].copies > 0,
+                          "table %u, view %zu: builds %d, %d, copies %d, %d", cases[c].size, v, ctx[0].builds,
+                          ctx[1].builds, ctx[0].copies, ctx[1].copies);
+        }
+        /* the next frame without copies builds the shared table: vf_render's */
+        CHECK_EQ(begin_frame(got, &views[5], W, H, 0, false), VF_OK);
+        CHECK_EQ(finish(got, got_px, 2), VF_OK);
+        CHECK(memcmp(want_px, got_px, sizeof got_px) == 0);
+    }
+}
+
+/* What the copies' calls refuse, and the options that never build a table as read: no copies, the shared table. */
+static void thread_copies_refused(void)
+{
+    fill_volume(true);
+    const vf_volume_t vol = {{NI, NJ, NK}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
+    vf_tf_point_t pts[2] = {{0, 65535, 65535, 65535, 0}, {255 * 256, 65535, 30000, 0, 65535}};
+    vf_tf_t tf = {pts, 2};
+    vf_params_t p;
+    vf_params_default(&p);
+    vf_arena_t ag;
+    vf_renderer_t *got;
+    CHECK_EQ(create(&got, &ag, arena_got, &p, &vol, &tf), VF_OK);
+    static unsigned char mem[2][256 * 256 * 8 + (1 << 18)];
+    const size_t bytes = vf_renderer_thread_table_bytes(got);
+    CHECK(bytes > 256 * 256 * 8 && bytes <= sizeof mem[0]);
+    vf_thread_table_t t = {mem[0], bytes, NULL, NULL, NULL}, u = {mem[1], bytes, NULL, NULL, NULL};
+    CHECK_EQ(vf_renderer_thread_table_begin(got, &t), VF_ERR_STATE); /* no frame yet */
+    const vf_frame_t frame = {.view = views[0], .width = W, .height = H, .table_parts = 2, .thread_tables = true};
+    CHECK_EQ(vf_renderer_begin(got, &frame), VF_OK);
+    CHECK_EQ(vf_renderer_thread_table_begin(NULL, &t), VF_ERR_NULL);
+    CHECK_EQ(vf_renderer_thread_table_begin(got, NULL), VF_ERR_NULL);
+    vf_thread_table_t small = {mem[0], bytes - 1, NULL, NULL, NULL};
+    CHECK_EQ(vf_renderer_thread_table_begin(got, &small), VF_ERR_NOMEM);
+    CHECK_EQ(vf_renderer_composite_band_in(got, 0, 1, scratch, sizeof scratch, &small), VF_ERR_NOMEM);
+    CHECK_EQ(vf_renderer_thread_table_begin(got, &t), VF_OK);
+    CHECK_EQ(vf_renderer_thread_table_begin(got, &u), VF_OK);
+    CHECK_EQ(vf_renderer_copy_diagonal(got, &t, &u, 256), VF_ERR_ARG);
+    CHECK_EQ(vf_renderer_copy_diagonal(got, &t, &u, 255), VF_OK);
+    CHECK_EQ(vf_renderer_composite_band_in(got, 0, 0, scratch, sizeof scratch, &t), VF_ERR_ARG);
+    /* a frame for one thread: the shared table, which the calls with a copy then read */
+    CHECK_EQ(begin_frame(got, &views[0], W, H, 0, true), VF_OK);
+    CHECK_EQ(vf_renderer_thread_table_begin(got, &t), VF_OK);
+    CHECK_EQ(vf_renderer_copy_diagonal(got, &t, &u, 3), VF_ERR_STATE);
+    CHECK_EQ(vf_renderer_composite_band_in(got, 0, vf_renderer_factor(got)->int_h, scratch, sizeof scratch, &t), VF_OK);
+    for (int k = 0; k < 3; k++) { /* never built as read: no copies, and frames that ask for them share the table */
+        vf_params_t q = p;
+        if (k == 0)
+            q.correction = VF_CORRECTION_LUT;
+        else if (k == 1)
+            q.table_bits = 8;
+        else
+            q.mode = VF_MODE_POINT;
+        CHECK_EQ(create(&got, &ag, arena_got, &q, &vol, &tf), VF_OK);
+        CHECK_EQ(vf_renderer_thread_table_bytes(got), 0);
+    }
+    p.lookup = VF_LOOKUP_BILINEAR; /* copies could be made, but this frame's loops read the table elsewhere */
+    CHECK_EQ(create(&got, &ag, arena_got, &p, &vol, &tf), VF_OK);
+    CHECK_EQ(vf_renderer_begin(got, &frame), VF_OK);
+    CHECK_EQ(vf_renderer_table_parts(got), 2);
+    CHECK_EQ(vf_renderer_thread_table_begin(got, &t), VF_OK); /* nothing to do */
+    CHECK_EQ(vf_renderer_composite_band_in(got, 0, 1, scratch, sizeof scratch, &t), VF_ERR_STATE); /* parts first */
+}
+
+CHECK_CASES(CHECK_CASE(demand_equals_whole), CHECK_CASE(demand_table_state), CHECK_CASE(demand_not_asked),
+            CHECK_CASE(thread_copies), CHECK_CASE(thread_copies_refused));
 CHECK_RUN("core/table_demand")
