@@ -38,6 +38,8 @@ static size_t visits_capacity(uint32_t width)
 size_t vfi_band_scratch_bytes(const vf_renderer_t *r, uint32_t rows)
 {
     size_t bytes = 2 * SCRATCH_ALIGN + sizeof(uint16_t) * rows * ((size_t)r->max_int_w + 1);
+    if (VF_SPECIAL_LOOPS && r->params.mode == VF_MODE_PRECLASS) /* the plain loop's classes and a slice's terms */
+        return bytes + SCRATCH_ALIGN + sizeof(uint64_t) * (VFI_PRECLASS_CLASSES + VFI_PRECLASS_TERMS);
     if (r->params.mode != VF_MODE_PREINT1 && r->params.mode != VF_MODE_PREINT2) /* preint2: preint1's buffers */
         return bytes;
     const size_t copies = VF_LIGHTING && r->params.lighting ? 2 : 1; /* the buffers, and for lighting their shades */
@@ -131,6 +133,12 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
 #endif
     if (r->params.mode != VF_MODE_PREINT1) {
         const bool preclass = r->params.mode == VF_MODE_PRECLASS;
+        uint64_t *classes = NULL, *terms = NULL; /* preclass's plain loop (composite_preclass.c) */
+        if (VF_SPECIAL_LOOPS && preclass && job.plain) {
+            classes = (uint64_t *)align_up((unsigned char *)(next + (size_t)rows * (width + 1)));
+            terms = classes + VFI_PRECLASS_CLASSES;
+            vfi_preclass_classes(&job, classes);
+        }
         for (uint32_t t = 0; t < l->nk; t++) {
             slice_place_t *sl = &place[0];
             vfi_place_slice(r, t, sl);
@@ -155,6 +163,8 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
             const int32_t lo = MAX(sl->v_lo, (int32_t)v0), hi = MIN(sl->v_hi, (int32_t)v1 - 1);
             job.front = sl;
             job.t = t;
+            if (VF_SPECIAL_LOOPS && classes && lo <= hi && whole.u_lo <= whole.u_hi)
+                vfi_preclass_terms(classes, sl->fx, job.grey, terms), job.preclass_terms = terms;
             for (int32_t v = lo; v <= hi; v++) {
                 uint32_t j;
                 job.row_data = vfi_slice_row(sl, job.row, job.step, v, &j, &job.front_fy);
