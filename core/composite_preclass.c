@@ -128,4 +128,116 @@ void vfi_row_preclass(const row_job_t *job, run_merge_t *m)
     else
         row_colour(job, m);
 }
+
+#if VF_LIGHTING
+/* A voxel of scalar v and normal code c lit as the general loop lights it, C' = min((L_d C + L_s a + 2^13) >> 14, a)
+ * per colour channel (vfi_light_point without a gradient factor: the plain path has none), into its words. */
+static VF_ALWAYS_INLINE void lit_voxel(const uint64_t *classes, const uint64_t *shade, uint8_t v, uint16_t c, bool grey,
+                                       uint64_t *out)
+{
+    const uint64_t e = shade[c], w0 = classes[2 * v], w1 = classes[2 * v + 1];
+    const uint32_t d = vfi_shade_diffuse(e), a = (uint32_t)(w1 >> 32), sa = vfi_shade_specular(e) * a + 0x2000u;
+    uint32_t x = (d * (uint32_t)w0 + sa) >> 14;
+    const uint64_t first = x < a ? x : a;
+    if (grey) {
+        out[0] = first | (uint64_t)a << 32;
+        return;
+    }
+    x = (d * (uint32_t)(w0 >> 32) + sa) >> 14;
+    out[0] = first | (uint64_t)(x < a ? x : a) << 32;
+    x = (d * (uint32_t)w1 + sa) >> 14;
+    out[1] = (x < a ? x : a) | (uint64_t)a << 32;
+}
+
+/* Column i's lit voxel of a slice row whose two-row cache row is lit, stamped with key: lit now unless it already
+ * is (an earlier pixel of this row, or the row above, lit it). */
+static VF_ALWAYS_INLINE const uint64_t *cached_voxel(const uint64_t *classes, const uint64_t *shade, const uint8_t *scalars,
+                                                     const uint16_t *codes, uint64_t *lit, uint32_t *stamp,
+                                                     uint32_t key, uint32_t i, bool grey)
+{
+    uint64_t *w = lit + 2 * (size_t)i;
+    if (stamp[i] != key) {
+        lit_voxel(classes, shade, scalars[i], codes[i], grey, w);
+        stamp[i] = key;
+    }
+    return w;
+}
+
+/* The lerp of two words at f, f1 = 2^16 - f (vfi_lerp on two lanes). */
+static VF_ALWAYS_INLINE uint64_t lerp_words(uint64_t x, uint64_t y, uint32_t f, uint32_t f1)
+{
+    return ((x * f1 + y * f + ROUND16) >> 16) & LANES;
+}
+
+static VF_ALWAYS_INLINE void row_lit_body(const row_job_t *job, run_merge_t *m, bool grey)
+{
+    const slice_place_t *sl = job->front;
+    const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fx1 = 65536u - fx, fy = job->front_fy,
+                   fy1 = 65536u - fy;
+    const uint8_t *data = job->row_data;
+    const vfi_shading_t *sh = job->shading;
+    const uint64_t *classes = job->preclass_classes, *shade = sh->shade;
+    const uint16_t *codes = sh->codes + (data - sh->slices);
+    /* the slice rows j and j + 1 under this row, each in the cache row of its parity, stamped t (nj + 1) + j: row
+     * j + 1 can be row nj, past the slice (the last row's samples have fy = 0 and weigh it 0), which is no other
+     * slice's row 0; so can column i + 1 be column ni, which the cache rows have room for */
+    const uint32_t j = (uint32_t)((size_t)(data - sl->data) / row), key = job->t * (job->nj + 1) + j;
+    const size_t cols = job->preclass_cols;
+    uint64_t *lit_top = job->preclass_lit + (j & 1) * 2 * cols, *lit_bottom = job->preclass_lit + (~j & 1) * 2 * cols;
+    uint32_t *stamp_top = job->preclass_stamp + (j & 1) * cols, *stamp_bottom = job->preclass_stamp + (~j & 1) * cols;
+    uint16_t *next = job->next, *pixels = job->pixels;
+    int32_t a, b;
+    while (vfi_merge_next(m, &a, &b)) {
+        a = a > job->clip_lo ? a : job->clip_lo;
+        b = b < job->clip_hi + 1 ? b : job->clip_hi + 1;
+        for (uint32_t u = a < b ? vfi_next_open(next, (uint32_t)a) : (uint32_t)b; u < (uint32_t)b;
+             u = vfi_next_open(next, u + 1)) {
+            const uint32_t i = u - cu;
+            const uint64_t *e0 = cached_voxel(classes, shade, data, codes, lit_top, stamp_top, key, i, grey);
+            const uint64_t *e1 = cached_voxel(classes, shade, data, codes, lit_top, stamp_top, key, i + 1, grey);
+            const uint64_t *e2 = cached_voxel(classes, shade, data + row, codes + row, lit_bottom, stamp_bottom,
+                                              key + 1, i, grey);
+            const uint64_t *e3 = cached_voxel(classes, shade, data + row, codes + row, lit_bottom, stamp_bottom,
+                                              key + 1, i + 1, grey);
+            const int w = grey ? 0 : 1; /* the word with alpha */
+            const uint64_t wa = lerp_words(lerp_words(e0[w], e1[w], fx, fx1), lerp_words(e2[w], e3[w], fx, fx1), fy, fy1);
+            if (!(wa >> 32))
+                continue;
+            uint16_t *px = pixels + (size_t)u * 4;
+            const uint64_t before = load_pixel(px);
+            const uint32_t t = VFI_ONE_Q15 - (uint32_t)(before >> 48);
+            const uint64_t add_a = (wa * t + ROUND15) >> 15;
+            uint64_t add;
+            if (grey) {
+                add = (add_a & 0xFFFFu) * UINT64_C(0x100010001) + ((add_a >> 32) << 48);
+            } else {
+                const uint64_t rb = lerp_words(lerp_words(e0[0], e1[0], fx, fx1), lerp_words(e2[0], e3[0], fx, fx1), fy,
+                                               fy1);
+                add = (((rb * t + ROUND15) >> 15) & LANES) | (add_a & LANES) << 16;
+            }
+            store_pixel(px, before + add);
+            if (px[3] >= VFI_OPAQUE_Q15)
+                next[u] = (uint16_t)(u + 1);
+        }
+    }
+}
+
+static VF_NOINLINE void row_lit_grey(const row_job_t *job, run_merge_t *m)
+{
+    row_lit_body(job, m, true);
+}
+
+static VF_NOINLINE void row_lit_colour(const row_job_t *job, run_merge_t *m)
+{
+    row_lit_body(job, m, false);
+}
+
+void vfi_row_preclass_lit(const row_job_t *job, run_merge_t *m)
+{
+    if (job->grey)
+        row_lit_grey(job, m);
+    else
+        row_lit_colour(job, m);
+}
+#endif
 #endif
