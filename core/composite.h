@@ -107,8 +107,8 @@ typedef struct row_job {
     /* preclass's plain loops (composite_preclass.c) */
     const uint64_t *preclass_terms;    /* unlit: the slice's terms, else NULL */
     const uint64_t *preclass_classes;  /* lit: the band's classes */
-    uint64_t *preclass_lit;            /* lit: two slice rows' lit voxels, [2][cols][2], row j's at j & 1 */
-    uint32_t *preclass_stamp;          /* lit: [2][cols], which slice row's voxel a column holds */
+    uint64_t *preclass_lit;            /* lit: two slice rows' lerps across, [2][cols][2], row j's at j & 1 */
+    uint32_t *preclass_stamp;          /* lit: [2][cols], which slice row's lerp a column holds */
     uint32_t preclass_cols;            /* max_ni + 1 */
 } row_job_t;
 
@@ -123,7 +123,8 @@ void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass);
 void vfi_preclass_classes(const row_job_t *job, uint64_t *classes);
 void vfi_preclass_terms(const uint64_t *classes, uint32_t fx, bool grey, uint64_t *terms);
 void vfi_row_preclass(const row_job_t *job, run_merge_t *m);
-/* Lit preclass on the plain path (plain_lit): each voxel lit once a slice, kept for the next row. */
+/* Lit preclass on the plain path (plain_lit): a voxel lit about once a slice row, a row's lerps across kept for the
+ * next row. */
 #define VFI_PRECLASS_NO_ROW UINT32_MAX /* a stamp that names no slice row */
 void vfi_row_preclass_lit(const row_job_t *job, run_merge_t *m);
 

@@ -149,26 +149,17 @@ static VF_ALWAYS_INLINE void lit_voxel(const uint64_t *classes, const uint64_t *
     out[1] = (x < a ? x : a) | (uint64_t)a << 32;
 }
 
-/* Column i's lit voxel of a slice row whose two-row cache row is lit, stamped with key: lit now unless it already
- * is (an earlier pixel of this row, or the row above, lit it). */
-static VF_ALWAYS_INLINE const uint64_t *cached_voxel(const uint64_t *classes, const uint64_t *shade, const uint8_t *scalars,
-                                                     const uint16_t *codes, uint64_t *lit, uint32_t *stamp,
-                                                     uint32_t key, uint32_t i, bool grey)
-{
-    uint64_t *w = lit + 2 * (size_t)i;
-    if (stamp[i] != key) {
-        lit_voxel(classes, shade, scalars[i], codes[i], grey, w);
-        stamp[i] = key;
-    }
-    return w;
-}
-
 /* The lerp of two words at f, f1 = 2^16 - f (vfi_lerp on two lanes). */
 static VF_ALWAYS_INLINE uint64_t lerp_words(uint64_t x, uint64_t y, uint32_t f, uint32_t f1)
 {
     return ((x * f1 + y * f + ROUND16) >> 16) & LANES;
 }
 
+/* A row of a lit frame. A pixel's sample is the lerp down of two lerps across (x), of the lit voxels at columns i and
+ * i + 1 of slice rows j and j + 1. Row j + 1's x is this row's to work out; row j's the row above worked out (as its
+ * row j + 1) if it walked this pixel, and left in the cache stamped with its slice row: else it is worked out here.
+ * Along a run, column i's voxel of row j + 1 is the one the pixel before lit as its column i + 1: one voxel lit a
+ * pixel, where the general loop lights four. */
 static VF_ALWAYS_INLINE void row_lit_body(const row_job_t *job, run_merge_t *m, bool grey)
 {
     const slice_place_t *sl = job->front;
@@ -178,14 +169,18 @@ static VF_ALWAYS_INLINE void row_lit_body(const row_job_t *job, run_merge_t *m, 
     const vfi_shading_t *sh = job->shading;
     const uint64_t *classes = job->preclass_classes, *shade = sh->shade;
     const uint16_t *codes = sh->codes + (data - sh->slices);
-    /* the slice rows j and j + 1 under this row, each in the cache row of its parity, stamped t (nj + 1) + j: row
-     * j + 1 can be row nj, past the slice (the last row's samples have fy = 0 and weigh it 0), which is no other
-     * slice's row 0; so can column i + 1 be column ni, which the cache rows have room for */
+    /* x of slice row j is stamped t (nj + 1) + j, in the cache row of j's parity. Row j + 1 can be row nj, past the
+     * slice (the last row's samples have fy = 0 and weigh it 0), which is no other slice's row 0 that way */
     const uint32_t j = (uint32_t)((size_t)(data - sl->data) / row), key = job->t * (job->nj + 1) + j;
     const size_t cols = job->preclass_cols;
-    uint64_t *lit_top = job->preclass_lit + (j & 1) * 2 * cols, *lit_bottom = job->preclass_lit + (~j & 1) * 2 * cols;
-    uint32_t *stamp_top = job->preclass_stamp + (j & 1) * cols, *stamp_bottom = job->preclass_stamp + (~j & 1) * cols;
+    const uint64_t *x_top = job->preclass_lit + (j & 1) * 2 * cols;
+    uint64_t *x_bottom = job->preclass_lit + (~j & 1) * 2 * cols;
+    const uint32_t *stamp_top = job->preclass_stamp + (j & 1) * cols;
+    uint32_t *stamp_bottom = job->preclass_stamp + (~j & 1) * cols;
     uint16_t *next = job->next, *pixels = job->pixels;
+    const int w = grey ? 0 : 1; /* the word with alpha */
+    uint32_t last = UINT32_MAX - 1; /* the pixel before, whose column i + 1 voxel of row j + 1 is in carry */
+    uint64_t carry[2] = {0, 0};
     int32_t a, b;
     while (vfi_merge_next(m, &a, &b)) {
         a = a > job->clip_lo ? a : job->clip_lo;
@@ -193,14 +188,27 @@ static VF_ALWAYS_INLINE void row_lit_body(const row_job_t *job, run_merge_t *m, 
         for (uint32_t u = a < b ? vfi_next_open(next, (uint32_t)a) : (uint32_t)b; u < (uint32_t)b;
              u = vfi_next_open(next, u + 1)) {
             const uint32_t i = u - cu;
-            const uint64_t *e0 = cached_voxel(classes, shade, data, codes, lit_top, stamp_top, key, i, grey);
-            const uint64_t *e1 = cached_voxel(classes, shade, data, codes, lit_top, stamp_top, key, i + 1, grey);
-            const uint64_t *e2 = cached_voxel(classes, shade, data + row, codes + row, lit_bottom, stamp_bottom,
-                                              key + 1, i, grey);
-            const uint64_t *e3 = cached_voxel(classes, shade, data + row, codes + row, lit_bottom, stamp_bottom,
-                                              key + 1, i + 1, grey);
-            const int w = grey ? 0 : 1; /* the word with alpha */
-            const uint64_t wa = lerp_words(lerp_words(e0[w], e1[w], fx, fx1), lerp_words(e2[w], e3[w], fx, fx1), fy, fy1);
+            uint64_t v0[2] = {carry[0], carry[1]}, top[2];
+            if (u != last + 1)
+                lit_voxel(classes, shade, data[row + i], codes[row + i], grey, v0);
+            lit_voxel(classes, shade, data[row + i + 1], codes[row + i + 1], grey, carry);
+            last = u;
+            uint64_t *bottom = x_bottom + 2 * (size_t)i;
+            bottom[0] = lerp_words(v0[0], carry[0], fx, fx1);
+            if (!grey)
+                bottom[1] = lerp_words(v0[1], carry[1], fx, fx1);
+            stamp_bottom[i] = key + 1;
+            if (stamp_top[i] == key) {
+                top[0] = x_top[2 * (size_t)i];
+                top[1] = grey ? 0 : x_top[2 * (size_t)i + 1];
+            } else {
+                uint64_t t0[2] = {0, 0}, t1[2] = {0, 0};
+                lit_voxel(classes, shade, data[i], codes[i], grey, t0);
+                lit_voxel(classes, shade, data[i + 1], codes[i + 1], grey, t1);
+                top[0] = lerp_words(t0[0], t1[0], fx, fx1);
+                top[1] = grey ? 0 : lerp_words(t0[1], t1[1], fx, fx1);
+            }
+            const uint64_t wa = lerp_words(top[w], bottom[w], fy, fy1);
             if (!(wa >> 32))
                 continue;
             uint16_t *px = pixels + (size_t)u * 4;
@@ -211,8 +219,7 @@ static VF_ALWAYS_INLINE void row_lit_body(const row_job_t *job, run_merge_t *m, 
             if (grey) {
                 add = (add_a & 0xFFFFu) * UINT64_C(0x100010001) + ((add_a >> 32) << 48);
             } else {
-                const uint64_t rb = lerp_words(lerp_words(e0[0], e1[0], fx, fx1), lerp_words(e2[0], e3[0], fx, fx1), fy,
-                                               fy1);
+                const uint64_t rb = lerp_words(top[0], bottom[0], fy, fy1);
                 add = (((rb * t + ROUND15) >> 15) & LANES) | (add_a & LANES) << 16;
             }
             store_pixel(px, before + add);
