@@ -135,24 +135,28 @@ void vfi_row_preclass(const row_job_t *job, run_merge_t *m)
 static VF_ALWAYS_INLINE void lit_voxel(const uint64_t *classes, const uint64_t *shade, uint8_t v, uint16_t c, bool grey,
                                        uint64_t *out)
 {
-    const uint64_t e = shade[c], w0 = classes[2 * v], w1 = classes[2 * v + 1];
-    const uint32_t d = vfi_shade_diffuse(e), a = (uint32_t)(w1 >> 32), sa = vfi_shade_specular(e) * a + 0x2000u;
+    const uint64_t e = shade[c], w0 = classes[2 * (size_t)v];
+    const uint32_t d = vfi_shade_diffuse(e), a = (uint32_t)(classes[2 * (size_t)v + !grey] >> 32),
+                   sa = vfi_shade_specular(e) * a + 0x2000u;
     uint32_t x = (d * (uint32_t)w0 + sa) >> 14;
     const uint64_t first = x < a ? x : a;
     if (grey) {
         out[0] = first | (uint64_t)a << 32;
         return;
     }
+    const uint64_t w1 = classes[2 * (size_t)v + 1];
     x = (d * (uint32_t)(w0 >> 32) + sa) >> 14;
     out[0] = first | (uint64_t)(x < a ? x : a) << 32;
     x = (d * (uint32_t)w1 + sa) >> 14;
     out[1] = (x < a ? x : a) | (uint64_t)a << 32;
 }
 
-/* The lerp of two words at f, f1 = 2^16 - f (vfi_lerp on two lanes). */
-static VF_ALWAYS_INLINE uint64_t lerp_words(uint64_t x, uint64_t y, uint32_t f, uint32_t f1)
+/* The lerp of two words at f (vfi_lerp on two lanes): x (2^16 - f) + y f is x 2^16 + (y - x) f, one product; y - x
+ * borrows across the lanes, and the product and the sum carry back what it borrowed, as every lane of the sum is
+ * in [0, 2^32). */
+static VF_ALWAYS_INLINE uint64_t lerp_words(uint64_t x, uint64_t y, uint32_t f)
 {
-    return ((x * f1 + y * f + ROUND16) >> 16) & LANES;
+    return (((x << 16) + (y - x) * f + ROUND16) >> 16) & LANES;
 }
 
 /* A row of a lit frame. A pixel's sample is the lerp down of two lerps across (x), of the lit voxels at columns i and
@@ -163,8 +167,7 @@ static VF_ALWAYS_INLINE uint64_t lerp_words(uint64_t x, uint64_t y, uint32_t f, 
 static VF_ALWAYS_INLINE void row_lit_body(const row_job_t *job, run_merge_t *m, bool grey)
 {
     const slice_place_t *sl = job->front;
-    const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fx1 = 65536u - fx, fy = job->front_fy,
-                   fy1 = 65536u - fy;
+    const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fy = job->front_fy;
     const uint8_t *data = job->row_data;
     const vfi_shading_t *sh = job->shading;
     const uint64_t *classes = job->preclass_classes, *shade = sh->shade;
@@ -194,9 +197,9 @@ static VF_ALWAYS_INLINE void row_lit_body(const row_job_t *job, run_merge_t *m, 
             lit_voxel(classes, shade, data[row + i + 1], codes[row + i + 1], grey, carry);
             last = u;
             uint64_t *bottom = x_bottom + 2 * (size_t)i;
-            bottom[0] = lerp_words(v0[0], carry[0], fx, fx1);
+            bottom[0] = lerp_words(v0[0], carry[0], fx);
             if (!grey)
-                bottom[1] = lerp_words(v0[1], carry[1], fx, fx1);
+                bottom[1] = lerp_words(v0[1], carry[1], fx);
             stamp_bottom[i] = key + 1;
             if (stamp_top[i] == key) {
                 top[0] = x_top[2 * (size_t)i];
@@ -205,10 +208,10 @@ static VF_ALWAYS_INLINE void row_lit_body(const row_job_t *job, run_merge_t *m, 
                 uint64_t t0[2] = {0, 0}, t1[2] = {0, 0};
                 lit_voxel(classes, shade, data[i], codes[i], grey, t0);
                 lit_voxel(classes, shade, data[i + 1], codes[i + 1], grey, t1);
-                top[0] = lerp_words(t0[0], t1[0], fx, fx1);
-                top[1] = grey ? 0 : lerp_words(t0[1], t1[1], fx, fx1);
+                top[0] = lerp_words(t0[0], t1[0], fx);
+                top[1] = grey ? 0 : lerp_words(t0[1], t1[1], fx);
             }
-            const uint64_t wa = lerp_words(top[w], bottom[w], fy, fy1);
+            const uint64_t wa = lerp_words(top[w], bottom[w], fy);
             if (!(wa >> 32))
                 continue;
             uint16_t *px = pixels + (size_t)u * 4;
@@ -219,7 +222,7 @@ static VF_ALWAYS_INLINE void row_lit_body(const row_job_t *job, run_merge_t *m, 
             if (grey) {
                 add = (add_a & 0xFFFFu) * UINT64_C(0x100010001) + ((add_a >> 32) << 48);
             } else {
-                const uint64_t rb = lerp_words(top[0], bottom[0], fy, fy1);
+                const uint64_t rb = lerp_words(top[0], bottom[0], fy);
                 add = (((rb * t + ROUND15) >> 15) & LANES) | (add_a & LANES) << 16;
             }
             store_pixel(px, before + add);
