@@ -175,8 +175,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
             const int32_t lo = MAX(sl->v_lo, (int32_t)v0), hi = MIN(sl->v_hi, (int32_t)v1 - 1);
             job.front = sl;
             job.t = t;
-            if (VF_SPECIAL_LOOPS && classes && job.plain && lo <= hi && whole.u_lo <= whole.u_hi)
-                vfi_preclass_terms(classes, sl->fx, job.grey, terms), job.preclass_terms = terms;
+            bool terms_due = VF_SPECIAL_LOOPS && classes && job.plain; /* built for the slice's first visible row */
             for (int32_t v = lo; v <= hi; v++) {
                 uint32_t j;
                 job.row_data = vfi_slice_row(sl, job.row, job.step, v, &j, &job.front_fy);
@@ -190,6 +189,9 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
                         vfi_merge_init(&m, job.step_shift, p, end, sl, NULL, NULL, NULL);
                         job.clip_lo = whole.u_lo;
                         job.clip_hi = whole.u_hi;
+                        if (terms_due)
+                            vfi_preclass_terms(classes, sl->fx, job.grey, terms), job.preclass_terms = terms;
+                        terms_due = false;
                         vfi_row_order0(&job, &m, preclass);
                     }
                 }
