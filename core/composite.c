@@ -38,6 +38,12 @@ static size_t visits_capacity(uint32_t width)
 size_t vfi_band_scratch_bytes(const vf_renderer_t *r, uint32_t rows)
 {
     size_t bytes = 2 * SCRATCH_ALIGN + sizeof(uint16_t) * rows * ((size_t)r->max_int_w + 1);
+    if (VF_SPECIAL_LOOPS && r->params.mode == VF_MODE_PRECLASS) { /* the plain loops' classes, a slice's terms,
+                                                                    * lit: two rows of lit voxels and their stamps */
+        const size_t lit = VF_LIGHTING && r->params.lighting ? 2 * ((size_t)r->max_ni + 1) : 0;
+        return bytes + SCRATCH_ALIGN + sizeof(uint64_t) * (VFI_PRECLASS_CLASSES + VFI_PRECLASS_TERMS + 2 * lit) +
+               sizeof(uint32_t) * lit;
+    }
     if (r->params.mode != VF_MODE_PREINT1 && r->params.mode != VF_MODE_PREINT2) /* preint2: preint1's buffers */
         return bytes;
     const size_t copies = VF_LIGHTING && r->params.lighting ? 2 : 1; /* the buffers, and for lighting their shades */
@@ -142,6 +148,20 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
 #endif
     if (r->params.mode != VF_MODE_PREINT1) {
         const bool preclass = r->params.mode == VF_MODE_PRECLASS;
+        uint64_t *classes = NULL, *terms = NULL; /* preclass's plain loops (composite_preclass.c) */
+        if (VF_SPECIAL_LOOPS && preclass && (job.plain || job.plain_lit)) {
+            classes = (uint64_t *)align_up((unsigned char *)(next + (size_t)rows * (width + 1)));
+            terms = classes + VFI_PRECLASS_CLASSES;
+            vfi_preclass_classes(&job, classes);
+            job.preclass_classes = classes;
+            if (job.plain_lit) {
+                job.preclass_cols = r->max_ni + 1;
+                job.preclass_lit = terms + VFI_PRECLASS_TERMS;
+                job.preclass_stamp = (uint32_t *)(job.preclass_lit + 4 * (size_t)job.preclass_cols);
+                for (uint32_t n = 0; n < 2 * job.preclass_cols; n++)
+                    job.preclass_stamp[n] = VFI_PRECLASS_NO_ROW;
+            }
+        }
         for (uint32_t t = 0; t < l->nk; t++) {
             slice_place_t *sl = &place[0];
             vfi_place_slice(r, t, sl);
@@ -166,6 +186,7 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
             const int32_t lo = MAX(sl->v_lo, (int32_t)v0), hi = MIN(sl->v_hi, (int32_t)v1 - 1);
             job.front = sl;
             job.t = t;
+            bool terms_due = VF_SPECIAL_LOOPS && classes && job.plain; /* built for the slice's first visible row */
             for (int32_t v = lo; v <= hi; v++) {
                 uint32_t j;
                 job.row_data = vfi_slice_row(sl, job.row, job.step, v, &j, &job.front_fy);
@@ -179,6 +200,9 @@ vf_status_t vfi_composite_band(const vf_renderer_t *r, uint32_t v0, uint32_t v1,
                         vfi_merge_init(&m, job.step_shift, p, end, sl, NULL, NULL, NULL);
                         job.clip_lo = whole.u_lo;
                         job.clip_hi = whole.u_hi;
+                        if (terms_due)
+                            vfi_preclass_terms(classes, sl->fx, job.grey, terms), job.preclass_terms = terms;
+                        terms_due = false;
                         vfi_row_order0(&job, &m, preclass);
                     }
                 }

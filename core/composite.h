@@ -2,7 +2,8 @@
 /*
  * composite.h: what the compositing files share (docs/algorithm.md, sections 4 and 4b). composite.c runs a band:
  * it places each slice in the intermediate image, merges the run-length encoding's visible runs of a row and hands
- * each row to composite_order0.c (point, preclass: one slice) or composite_order1.c (preint1: one slab).
+ * each row to composite_order0.c (point, preclass: one slice; unlit preclass's plain loop in composite_preclass.c) or
+ * composite_order1.c (preint1: one slab).
  *
  * Samples are bilinear in the slice and exact: the slice offsets lie on the 2^-16 grid, so a sample is a multiple
  * of 2^-32 and fits Q8.32, and its nearest table entry is the one the double reference picks.
@@ -103,9 +104,29 @@ typedef struct row_job {
     int32_t front_shift, back_shift;
     const vfi_demand_t *demand;        /* the 2D table is built as it is read (tables.h), or NULL */
     const vfi_shading_t *shading;      /* lit frames (shade.h), which take the general loops; else NULL */
+    /* preclass's plain loops (composite_preclass.c) */
+    const uint64_t *preclass_terms;    /* unlit: the slice's terms, else NULL */
+    const uint64_t *preclass_classes;  /* lit: the band's classes */
+    uint64_t *preclass_lit;            /* lit: two slice rows' lerps across, [2][cols][2], row j's at j & 1 */
+    uint32_t *preclass_stamp;          /* lit: [2][cols], which slice row's lerp a column holds */
+    uint32_t preclass_cols;            /* max_ni + 1 */
 } row_job_t;
 
 void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass);
+
+/* Unlit preclass on the plain path (composite_preclass.c, VF_SPECIAL_LOOPS builds): the band's classes, 8-bit
+ * scalar s's entry of the point table as classes[2 s] = r | b << 32 (grey: r | a << 32) and classes[2 s + 1] =
+ * g | a << 32; a slice's terms, [4][256] from the classes at the slice's fx (grey: [0] and [2] alone); one row of
+ * the slice (job->preclass_terms set). */
+#define VFI_PRECLASS_CLASSES 512
+#define VFI_PRECLASS_TERMS 1024
+void vfi_preclass_classes(const row_job_t *job, uint64_t *classes);
+void vfi_preclass_terms(const uint64_t *classes, uint32_t fx, bool grey, uint64_t *terms);
+void vfi_row_preclass(const row_job_t *job, run_merge_t *m);
+/* Lit preclass on the plain path (plain_lit): a voxel lit about once a slice row, a row's lerps across kept for the
+ * next row. */
+#define VFI_PRECLASS_NO_ROW UINT32_MAX /* a stamp that names no slice row */
+void vfi_row_preclass_lit(const row_job_t *job, run_merge_t *m);
 
 /* The rows [v_lo, v_hi] of a slab where both its slices are inside, in one call (composite_order1.c): what they
  * share. The slab is job's (front, back, t, the buffers' shifts); the arrays are row v_lo's, row v_lo + k's are k

@@ -152,10 +152,18 @@ void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
         row_point_lit(job, m);
         return;
     }
+#if VF_SPECIAL_LOOPS
+    if (job->plain_lit) {
+        vfi_row_preclass_lit(job, m);
+        return;
+    }
+#endif
 #endif
     if (job->plain && !preclass && job->lookup.n == 256)
         row_point_256(job, m);
 #if VF_SPECIAL_LOOPS
+    else if (job->preclass_terms)
+        vfi_row_preclass(job, m);
     else if (job->plain && !preclass)
         row_point_n(job, m);
 #endif

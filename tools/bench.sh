@@ -66,7 +66,7 @@ if command -v valgrind >/dev/null; then
     echo "== instructions per frame (callgrind, vfp_render_frame inclusive, 2 frames averaged)"
     for v in $volumes; do
         point= lut=
-        for mode in point preint1; do
+        for mode in point preint1 preclass; do
             total=$(instructions "$v" 1 --mode "$mode")
             if [ -z "$total" ]; then
                 echo "$(basename "$v") $mode: callgrind gave no count" >&2
@@ -75,9 +75,9 @@ if command -v valgrind >/dev/null; then
             printf '%-24s %-8s %s instructions per frame\n' "$(basename "$v")" "$mode" "$((total / 2))"
             [ "$mode" = point ] && point=$total
             # the same ratio by instructions; the frame-rate ratio (the matrix's "x point") differs from it, either way (README)
-            [ "$mode" = preint1 ] && [ -n "$point" ] &&
-                awk -v v="$(basename "$v")" -v p="$point" -v q="$total" \
-                    'BEGIN { printf "%-24s point / preint1 = %.2f (instructions per frame)\n", v, p / q }'
+            [ "$mode" != point ] && [ -n "$point" ] &&
+                awk -v v="$(basename "$v")" -v m="$mode" -v p="$point" -v q="$total" \
+                    'BEGIN { printf "%-24s point / %s = %.2f (instructions per frame)\n", v, m, p / q }'
         done
         # the lut builds its table once, in the first frame: a frame after that is the difference of 3 and 1
         # timed frames (4 and 2 rendered) over 2; it corrects the view table for each view

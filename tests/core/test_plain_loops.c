@@ -80,7 +80,7 @@ static void plain_equals_general(void)
         p.lighting = t % 2 == 0;
         p.shade_lookup = t % 4 < 2 ? VF_LOOKUP_NEAREST : VF_LOOKUP_BILINEAR;
         p.normal_bits = 8 + 2 * check_below(&seed, 5);
-        const vf_tf_t tf = random_tf(t % 3 != 1);
+        const vf_tf_t tf = random_tf((t / 3) % 3 != 1); /* grey and coloured in every mode */
         vf_lighting_t l;
         vf_lighting_default(&l);
         l.light_count = 1 + check_below(&seed, 2);
