@@ -31,15 +31,16 @@ static void span(int64_t start, int64_t step, int64_t lo, int64_t hi, int64_t wi
 static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, unsigned char *dst);
 static void store_pixel(const warp_row_t *w, unsigned char *dst, const uint32_t px[4]);
 
-/* Whether the four intermediate pixels at p00, p00 + 1 (above) and p01, p01 + 1 (below) are all transparent
- * black, so that the output pixel is the background whatever the weights. Much of a frame is empty space
- * around the volume; opacity first, because a pixel with opacity is the common case where it is not. */
-static VF_ALWAYS_INLINE bool empty_neighbours(const uint16_t *p00, const uint16_t *p01)
+/* An intermediate pixel's four Q1.15 channels as one word: r in bits 0-15, g 16-31, b 32-47, a 48-63, one load
+ * where the byte order allows (the image is 16-byte aligned, a pixel 8 bytes). */
+static VF_ALWAYS_INLINE uint64_t load_pixel(const uint16_t *p)
 {
-    if ((p00[3] | p00[7] | p01[3] | p01[7]) != 0)
-        return false;
-    return (p00[0] | p00[1] | p00[2] | p00[4] | p00[5] | p00[6] | p01[0] | p01[1] | p01[2] | p01[4] | p01[5] |
-            p01[6]) == 0;
+#if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    typedef uint64_t __attribute__((__may_alias__)) pixel_word_t; /* read as a word what compositing wrote as halves */
+    return *(const pixel_word_t *)(const void *)p;
+#else
+    return p[0] | (uint64_t)p[1] << 16 | (uint64_t)p[2] << 32 | (uint64_t)p[3] << 48;
+#endif
 }
 
 /* The pixel px (Q1.15 r, g, b, a) as the format's bytes, the background behind it when there is one: store_pixel
@@ -79,17 +80,68 @@ static VF_ALWAYS_INLINE void store_as(const warp_row_t *w, unsigned char *dst, c
     }
 }
 
+/* vf_format_bytes where the format is a constant, so that a specialised loop's byte counts are too. */
+static VF_ALWAYS_INLINE uint32_t format_bytes(vf_format_t format)
+{
+    return format == VF_FORMAT_RGB888 ? 3u : format == VF_FORMAT_RGB565 ? 2u : 4u;
+}
+
+/* The bilinear sums take two channels a word, in 32-bit lanes: r and b where a pixel word has them, g (and a)
+ * shifted down, or g alone left where it is (g 2^16, a word of its own). A lane's four products sum to at most
+ * 65535 x 65536 (the weights sum to 65536) and its rounding half on top stays below 2^32: no lane carries into
+ * the next, and every sum is the one the four products of a channel give alone. */
+#define LANES_RB UINT64_C(0x0000FFFF0000FFFF)
+#define LANE_G UINT64_C(0x00000000FFFF0000)
+#define HALF_Q16 UINT64_C(0x0000800000008000) /* 0.5 in Q0.16 in each lane */
+#define HALF_Q15 UINT64_C(0x0000400000004000) /* 0.5 in Q0.15 in each lane */
+#define TOP_RGB UINT64_C(0x0000800080008000)  /* r, g and b of 32768 and above */
+
+/* A pixel's r, b (lanes of rb, Q1.15) and g, each below 32768, as the format's bytes over no background: what
+ * store_as gives them (no clamp can act), with r and b converted side by side in their lanes. */
+static VF_ALWAYS_INLINE void store_fast(unsigned char *dst, uint64_t rb, uint32_t g, vf_format_t format)
+{
+    switch (format) {
+    case VF_FORMAT_RGB888: {
+        const uint64_t o = (rb * 255u + HALF_Q15) >> 15; /* r in bits 0-7, b in 32-39, bits 8-16 clear */
+        dst[0] = (unsigned char)o;
+        dst[1] = (unsigned char)((g * 255u + 0x4000u) >> 15);
+        dst[2] = (unsigned char)(o >> 32);
+        break;
+    }
+    case VF_FORMAT_RGB565: {
+        const uint64_t o = (rb * 31u + HALF_Q15) >> 15; /* r in bits 0-4, b in 32-36, bits 5-16 clear */
+        const uint32_t word = ((uint32_t)o & 0x1Fu) << 11 | ((g * 63u + 0x4000u) >> 15) << 5 | (uint32_t)(o >> 32);
+        dst[0] = (unsigned char)(word & 0xFFu);
+        dst[1] = (unsigned char)(word >> 8);
+        break;
+    }
+    default: { /* VF_FORMAT_XRGB8888: bytes B, G, R, X */
+        const uint64_t o = (rb * 255u + HALF_Q15) >> 15;
+        dst[0] = (unsigned char)(o >> 32);
+        dst[1] = (unsigned char)((g * 255u + 0x4000u) >> 15);
+        dst[2] = (unsigned char)o;
+        dst[3] = 0xFFu;
+        break;
+    }
+    }
+}
+
 /* count pixels from dst, each with all four neighbours inside the image (u, v >= 0: the shifts are floors), the
- * first at (u, v), then a step of (du, dv) a pixel; the format and background constants (inner_span). */
+ * first at (u, v), then a step of (du, dv) a pixel; the format and background constants, and whether the weights
+ * keep all 16 fraction bits (inner_span). */
 static VF_ALWAYS_INLINE void inner_body(const warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v,
                                         int64_t du, int64_t dv, unsigned char *dst, uint32_t count,
-                                        const unsigned char *background, vf_format_t format, bool have_bg)
+                                        const unsigned char *background, vf_format_t format, bool have_bg,
+                                        bool full_bits)
 {
-    const uint32_t bpp = vf_format_bytes(format), mask = w->fraction_mask;
+    const uint32_t bpp = format_bytes(format), mask = full_bits ? 0xFFFFu : w->fraction_mask;
     for (uint32_t x = 0; x < count; x++, u += du, v += dv, dst += bpp) {
         const uint16_t *p00 = img + ((size_t)(v >> 32) * (size_t)iw + (size_t)(u >> 32)) * 4;
         const uint16_t *p01 = p00 + iw * 4;
-        if (empty_neighbours(p00, p01)) { /* exactly what the weights would give: the background */
+        const uint64_t t00 = load_pixel(p00), t10 = load_pixel(p00 + 4), t01 = load_pixel(p01),
+                       t11 = load_pixel(p01 + 4);
+        const uint64_t any = t00 | t10 | t01 | t11;
+        if (any == 0) { /* all four transparent black: exactly what the weights would give, the background */
             for (uint32_t k = 0; k < bpp; k++)
                 dst[k] = background[k];
             continue;
@@ -97,35 +149,79 @@ static VF_ALWAYS_INLINE void inner_body(const warp_row_t *w, const uint16_t *img
         const uint32_t fx = (uint32_t)(u >> 16) & mask, fy = (uint32_t)(v >> 16) & mask;
         const uint32_t w11 = (fx * fy + 0x8000u) >> 16;
         const uint32_t w00 = 65536u - fx - fy + w11, w10 = fx - w11, w01 = fy - w11;
-        /* written out: at -O2 gcc keeps a loop over the four channels, half again the instructions */
-        const uint32_t px[4] = {(p00[0] * w00 + p00[4] * w10 + p01[0] * w01 + p01[4] * w11 + 0x8000u) >> 16,
-                                (p00[1] * w00 + p00[5] * w10 + p01[1] * w01 + p01[5] * w11 + 0x8000u) >> 16,
-                                (p00[2] * w00 + p00[6] * w10 + p01[2] * w01 + p01[6] * w11 + 0x8000u) >> 16,
-                                (p00[3] * w00 + p00[7] * w10 + p01[3] * w01 + p01[7] * w11 + 0x8000u) >> 16};
+        const uint64_t rb = (t00 & LANES_RB) * w00 + (t10 & LANES_RB) * w10 + (t01 & LANES_RB) * w01 +
+                            (t11 & LANES_RB) * w11 + HALF_Q16;
+        if (!have_bg && !(any & TOP_RGB)) {
+            /* Every tap's r, g, b is below 32768, so each sum, a rounded convex combination, is too. */
+            const uint64_t g = (t00 & LANE_G) * w00 + (t10 & LANE_G) * w10 + (t01 & LANE_G) * w01 +
+                               (t11 & LANE_G) * w11 + (UINT64_C(0x8000) << 16);
+            store_fast(dst, (rb >> 16) & LANES_RB, (uint32_t)(g >> 32), format);
+            continue;
+        }
+        const uint64_t ga = (t00 >> 16 & LANES_RB) * w00 + (t10 >> 16 & LANES_RB) * w10 +
+                            (t01 >> 16 & LANES_RB) * w01 + (t11 >> 16 & LANES_RB) * w11 + HALF_Q16;
+        const uint32_t px[4] = {(uint32_t)(rb >> 16) & 0xFFFFu, (uint32_t)(ga >> 16) & 0xFFFFu, (uint32_t)(rb >> 48),
+                                (uint32_t)(ga >> 48)};
         store_as(w, dst, px, format, have_bg);
     }
 }
 
-/* inner_body for the row's format and background: a loop for each with VF_SPECIAL_LOOPS, else one that asks */
+/* inner_body for any format, background and fraction bits */
+static void inner_general(const warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v, int64_t du,
+                          int64_t dv, unsigned char *dst, uint32_t count, const unsigned char *background)
+{
+    inner_body(w, img, iw, u, v, du, dv, dst, count, background, w->format, w->have_bg, false);
+}
+
+/* inner_body for the row's format and background: a loop for each with VF_SPECIAL_LOOPS and Q0.16 weights (the
+ * default), else one that asks */
 static void inner_span(const warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v, int64_t du,
                        int64_t dv, unsigned char *dst, uint32_t count, const unsigned char *background)
 {
-    if (!VF_SPECIAL_LOOPS) {
-        inner_body(w, img, iw, u, v, du, dv, dst, count, background, w->format, w->have_bg);
+    if (!VF_SPECIAL_LOOPS || w->fraction_mask != 0xFFFFu) {
+        inner_general(w, img, iw, u, v, du, dv, dst, count, background);
         return;
     }
     switch (w->format) {
     case VF_FORMAT_RGB888:
-        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, true)
-                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, false);
+        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, true, true)
+                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, false, true);
         break;
     case VF_FORMAT_RGB565:
-        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, true)
-                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, false);
+        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, true, true)
+                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, false, true);
         break;
     default:
-        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, true)
-                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, false);
+        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, true, true)
+                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, false, true);
+        break;
+    }
+}
+
+/* count pixels of the background from dst, a loop for each format (byte stores: rows need not be aligned) */
+static VF_ALWAYS_INLINE void fill_as(unsigned char *dst, uint32_t count, const unsigned char *background,
+                                     vf_format_t format)
+{
+    const uint32_t bpp = format_bytes(format);
+    unsigned char bytes[4]; /* a copy the stores cannot alias, kept in registers */
+    for (uint32_t k = 0; k < bpp; k++)
+        bytes[k] = background[k];
+    for (uint32_t x = 0; x < count; x++, dst += bpp)
+        for (uint32_t k = 0; k < bpp; k++)
+            dst[k] = bytes[k];
+}
+
+static void fill(unsigned char *dst, uint32_t count, const unsigned char *background, vf_format_t format)
+{
+    switch (format) {
+    case VF_FORMAT_RGB888:
+        fill_as(dst, count, background, VF_FORMAT_RGB888);
+        break;
+    case VF_FORMAT_RGB565:
+        fill_as(dst, count, background, VF_FORMAT_RGB565);
+        break;
+    default:
+        fill_as(dst, count, background, VF_FORMAT_XRGB8888);
         break;
     }
 }
@@ -194,18 +290,14 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
         if (inner1 <= inner0)
             inner0 = inner1 = touch0;
 
-        for (int64_t x = 0; x < touch0; x++)
-            for (uint32_t k = 0; k < bpp; k++)
-                row[x * bpp + k] = background[k];
+        fill(row, (uint32_t)touch0, background, w.format);
         for (int64_t x = touch0; x < inner0; x++)
             pixel_general(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
         inner_span(&w, img, iw, u_row + inner0 * f->du_dx_q32, v_row + inner0 * f->dv_dx_q32, f->du_dx_q32,
                    f->dv_dx_q32, row + inner0 * bpp, (uint32_t)(inner1 - inner0), background);
         for (int64_t x = inner1 > touch0 ? inner1 : touch0; x < touch1; x++)
             pixel_general(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
-        for (int64_t x = touch1; x < image->width; x++)
-            for (uint32_t k = 0; k < bpp; k++)
-                row[x * bpp + k] = background[k];
+        fill(row + touch1 * bpp, image->width - (uint32_t)touch1, background, w.format);
     }
     return VF_OK;
 }
