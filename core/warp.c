@@ -126,6 +126,22 @@ static VF_ALWAYS_INLINE void store_fast(unsigned char *dst, uint64_t rb, uint32_
     }
 }
 
+/* Bilinear of the pixel words t00, t10 (right), t01 (below), t11 with Q0.16 fractions fx, fy: px, Q1.15 r, g, b, a,
+ * each channel's sum rounded once. */
+static void bilinear(uint64_t t00, uint64_t t10, uint64_t t01, uint64_t t11, uint32_t fx, uint32_t fy, uint32_t px[4])
+{
+    const uint32_t w11 = (fx * fy + 0x8000u) >> 16;
+    const uint32_t w00 = 65536u - fx - fy + w11, w10 = fx - w11, w01 = fy - w11;
+    const uint64_t rb = (t00 & LANES_RB) * w00 + (t10 & LANES_RB) * w10 + (t01 & LANES_RB) * w01 +
+                        (t11 & LANES_RB) * w11 + HALF_Q16;
+    const uint64_t ga = (t00 >> 16 & LANES_RB) * w00 + (t10 >> 16 & LANES_RB) * w10 + (t01 >> 16 & LANES_RB) * w01 +
+                        (t11 >> 16 & LANES_RB) * w11 + HALF_Q16;
+    px[0] = (uint32_t)(rb >> 16) & 0xFFFFu;
+    px[1] = (uint32_t)(ga >> 16) & 0xFFFFu;
+    px[2] = (uint32_t)(rb >> 48);
+    px[3] = (uint32_t)(ga >> 48);
+}
+
 /* count pixels from dst, each with all four neighbours inside the image (u, v >= 0: the shifts are floors), the
  * first at (u, v), then a step of (du, dv) a pixel; the format and background constants, and whether the weights
  * keep all 16 fraction bits (inner_span). */
@@ -333,7 +349,7 @@ static void span(int64_t start, int64_t step, int64_t lo, int64_t hi, int64_t wi
     }
 }
 
-/* Bilinear, with pixels outside the intermediate image transparent. */
+/* Bilinear, with pixels outside the intermediate image transparent (for the pixels near its edges). */
 static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, unsigned char *dst)
 {
     const vf_renderer_t *r = w->r;
@@ -344,23 +360,16 @@ static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, uns
         store_pixel(w, dst, transparent);
         return;
     }
-    int32_t iu = (int32_t)(us >> 32) - 1, iv = (int32_t)(vs >> 32) - 1;
-    uint32_t fx = (uint32_t)(us >> 16) & w->fraction_mask, fy = (uint32_t)(vs >> 16) & w->fraction_mask;
-    uint32_t w11 = (fx * fy + 0x8000u) >> 16;
-    const uint32_t weight[4] = {65536u - fx - fy + w11, fx - w11, fy - w11, w11};
-    const int32_t du[4] = {0, 1, 0, 1}, dv[4] = {0, 0, 1, 1};
-    uint32_t acc[4] = {0x8000u, 0x8000u, 0x8000u, 0x8000u};
+    const int64_t iu = (us >> 32) - 1, iv = (vs >> 32) - 1;
+    const uint32_t fx = (uint32_t)(us >> 16) & w->fraction_mask, fy = (uint32_t)(vs >> 16) & w->fraction_mask;
+    uint64_t t[4];
     for (int n = 0; n < 4; n++) {
-        int32_t pu = iu + du[n], pv = iv + dv[n];
-        if (weight[n] == 0 || pu < 0 || pv < 0 || pu >= iw || pv >= ih)
-            continue;
-        const uint16_t *p = r->intermediate + ((size_t)pv * (size_t)iw + (size_t)pu) * 4;
-        for (int c = 0; c < 4; c++)
-            acc[c] += p[c] * weight[n]; /* at most 32768 * 65536 in all */
+        const int64_t pu = iu + (n & 1), pv = iv + (n >> 1);
+        t[n] = pu < 0 || pv < 0 || pu >= iw || pv >= ih ? 0 : load_pixel(r->intermediate + (pv * iw + pu) * 4);
     }
-    for (int c = 0; c < 4; c++)
-        acc[c] >>= 16;
-    store_pixel(w, dst, acc);
+    uint32_t px[4];
+    bilinear(t[0], t[1], t[2], t[3], fx, fy, px);
+    store_pixel(w, dst, px);
 }
 
 /* C + (1 - A) background, packed: store_as for any format, outside the inner loop. */
