@@ -214,7 +214,9 @@ static void inner_span(const warp_row_t *w, const uint16_t *img, int64_t iw, int
     }
 }
 
-/* count pixels of the background from dst, a loop for each format (byte stores: rows need not be aligned) */
+/* count pixels of the background from dst, a loop for each format: 24 bytes (8, 12 or 6 pixels) a step as three
+ * words where the compiler can be told the words may be unaligned and alias the bytes, then the rest byte by
+ * byte. */
 static VF_ALWAYS_INLINE void fill_as(unsigned char *dst, uint32_t count, const unsigned char *background,
                                      vf_format_t format)
 {
@@ -222,7 +224,25 @@ static VF_ALWAYS_INLINE void fill_as(unsigned char *dst, uint32_t count, const u
     unsigned char bytes[4]; /* a copy the stores cannot alias, kept in registers */
     for (uint32_t k = 0; k < bpp; k++)
         bytes[k] = background[k];
-    for (uint32_t x = 0; x < count; x++, dst += bpp)
+    uint32_t x = 0;
+#if defined(__GNUC__)
+    typedef uint64_t __attribute__((__may_alias__, __aligned__(1))) byte_word_t;
+    const uint32_t step = 24 / bpp;
+    if (count >= step) {
+        unsigned char pattern[24];
+        for (uint32_t k = 0; k < 24; k++)
+            pattern[k] = bytes[k % bpp];
+        const uint64_t w0 = *(const byte_word_t *)(const void *)pattern,
+                       w1 = *(const byte_word_t *)(const void *)(pattern + 8),
+                       w2 = *(const byte_word_t *)(const void *)(pattern + 16);
+        for (; x + step <= count; x += step, dst += 24) {
+            *(byte_word_t *)(void *)dst = w0;
+            *(byte_word_t *)(void *)(dst + 8) = w1;
+            *(byte_word_t *)(void *)(dst + 16) = w2;
+        }
+    }
+#endif
+    for (; x < count; x++, dst += bpp)
         for (uint32_t k = 0; k < bpp; k++)
             dst[k] = bytes[k];
 }
