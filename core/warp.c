@@ -163,21 +163,20 @@ static VF_ALWAYS_INLINE void inner_body(const warp_row_t *w, const uint16_t *img
             continue;
         }
         const uint32_t fx = (uint32_t)(u >> 16) & mask, fy = (uint32_t)(v >> 16) & mask;
-        const uint32_t w11 = (fx * fy + 0x8000u) >> 16;
-        const uint32_t w00 = 65536u - fx - fy + w11, w10 = fx - w11, w01 = fy - w11;
-        const uint64_t rb = (t00 & LANES_RB) * w00 + (t10 & LANES_RB) * w10 + (t01 & LANES_RB) * w01 +
-                            (t11 & LANES_RB) * w11 + HALF_Q16;
-        if (!have_bg && !(any & TOP_RGB)) {
-            /* Every tap's r, g, b is below 32768, so each sum, a rounded convex combination, is too. */
+        if (VF_SPECIAL_LOOPS && !have_bg && !(any & TOP_RGB)) {
+            /* Every tap's r, g, b is below 32768, so each sum, a rounded convex combination, is too: bilinear's
+             * sums without a, and the fast store. */
+            const uint32_t w11 = (fx * fy + 0x8000u) >> 16;
+            const uint32_t w00 = 65536u - fx - fy + w11, w10 = fx - w11, w01 = fy - w11;
             const uint64_t g = (t00 & LANE_G) * w00 + (t10 & LANE_G) * w10 + (t01 & LANE_G) * w01 +
                                (t11 & LANE_G) * w11 + (UINT64_C(0x8000) << 16);
+            const uint64_t rb = (t00 & LANES_RB) * w00 + (t10 & LANES_RB) * w10 + (t01 & LANES_RB) * w01 +
+                                (t11 & LANES_RB) * w11 + HALF_Q16;
             store_fast(dst, (rb >> 16) & LANES_RB, (uint32_t)(g >> 32), format);
             continue;
         }
-        const uint64_t ga = (t00 >> 16 & LANES_RB) * w00 + (t10 >> 16 & LANES_RB) * w10 +
-                            (t01 >> 16 & LANES_RB) * w01 + (t11 >> 16 & LANES_RB) * w11 + HALF_Q16;
-        const uint32_t px[4] = {(uint32_t)(rb >> 16) & 0xFFFFu, (uint32_t)(ga >> 16) & 0xFFFFu, (uint32_t)(rb >> 48),
-                                (uint32_t)(ga >> 48)};
+        uint32_t px[4];
+        bilinear(t00, t10, t01, t11, fx, fy, px);
         store_as(w, dst, px, format, have_bg);
     }
 }
@@ -215,8 +214,8 @@ static void inner_span(const warp_row_t *w, const uint16_t *img, int64_t iw, int
 }
 
 /* count pixels of the background from dst, a loop for each format: 24 bytes (8, 12 or 6 pixels) a step as three
- * words where the compiler can be told the words may be unaligned and alias the bytes, then the rest byte by
- * byte. */
+ * words where the compiler can be told the words may be unaligned and alias the bytes (VF_SPECIAL_LOOPS), then the
+ * rest byte by byte. */
 static VF_ALWAYS_INLINE void fill_as(unsigned char *dst, uint32_t count, const unsigned char *background,
                                      vf_format_t format)
 {
@@ -225,7 +224,7 @@ static VF_ALWAYS_INLINE void fill_as(unsigned char *dst, uint32_t count, const u
     for (uint32_t k = 0; k < bpp; k++)
         bytes[k] = background[k];
     uint32_t x = 0;
-#if defined(__GNUC__)
+#if defined(__GNUC__) && VF_SPECIAL_LOOPS
     typedef uint64_t __attribute__((__may_alias__, __aligned__(1))) byte_word_t;
     const uint32_t step = 24 / bpp;
     if (count >= step) {
