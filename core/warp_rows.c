@@ -132,6 +132,9 @@ static VF_ALWAYS_INLINE void inner_body(const vfi_warp_row_t *w, const uint16_t 
                                         bool full_bits)
 {
     const uint32_t bpp = format_bytes(format), mask = full_bits ? 0xFFFFu : w->fraction_mask;
+    unsigned char bytes[4]; /* the background, a copy the stores cannot alias */
+    for (uint32_t k = 0; k < bpp; k++)
+        bytes[k] = background[k];
     for (uint32_t x = 0; x < count; x++, u += du, v += dv, dst += bpp) {
         const uint16_t *p00 = img + ((size_t)(v >> 32) * (size_t)iw + (size_t)(u >> 32)) * 4;
         const uint16_t *p01 = p00 + iw * 4;
@@ -140,7 +143,7 @@ static VF_ALWAYS_INLINE void inner_body(const vfi_warp_row_t *w, const uint16_t 
         const uint64_t any = t00 | t10 | t01 | t11;
         if (any == 0) { /* all four transparent black: exactly what the weights would give, the background */
             for (uint32_t k = 0; k < bpp; k++)
-                dst[k] = background[k];
+                dst[k] = bytes[k];
             continue;
         }
         const uint32_t fx = (uint32_t)(u >> 16) & mask, fy = (uint32_t)(v >> 16) & mask;
@@ -172,7 +175,7 @@ static void inner_general(const vfi_warp_row_t *w, const uint16_t *img, int64_t 
 /* inner_body for the row's format and background: a loop for each with VF_SPECIAL_LOOPS and Q0.16 weights (the
  * default), else one that asks */
 void vfi_warp_inner(const vfi_warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v, int64_t du,
-                       int64_t dv, unsigned char *dst, uint32_t count, const unsigned char *background)
+                    int64_t dv, unsigned char *dst, uint32_t count, const unsigned char *background)
 {
     if (!VF_SPECIAL_LOOPS || w->fraction_mask != 0xFFFFu) {
         inner_general(w, img, iw, u, v, du, dv, dst, count, background);
