@@ -7,128 +7,12 @@
  * the bilinear weights are Q0.16, the colour Q1.15 until it is packed into the output format. Per row, the
  * pixels whose footprint misses the box of non-empty intermediate pixels get the background without being
  * sampled, and those whose four neighbours are all inside the image take a path without bounds checks, a loop for
- * each output format.
+ * each output format. The loops over a row's pixels are in warp_rows.c.
  */
 #include "fixmath.h"
-#include "renderer.h"
-
-#define ONE_Q32 (INT64_C(1) << 32)
-
-/* A transparent pixel (Q1.15 r, g, b, a). Constant and file-wide because a local {0} array may compile to a
- * memset call (gcc -Os for Cortex-M4 does), and the core calls nothing outside itself. */
-static const uint32_t transparent[4] = {0, 0, 0, 0};
-
-typedef struct warp_row {
-    const vf_renderer_t *r;
-    uint32_t fraction_mask; /* the warp's fraction bits kept (precision studies: fewer than 16) */
-    uint32_t bg[3];         /* background, Q1.15 */
-    bool have_bg;
-    vf_format_t format;
-    uint32_t bpp;
-} warp_row_t;
+#include "warp_rows.h"
 
 static void span(int64_t start, int64_t step, int64_t lo, int64_t hi, int64_t width, int64_t *x0, int64_t *x1);
-static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, unsigned char *dst);
-static void store_pixel(const warp_row_t *w, unsigned char *dst, const uint32_t px[4]);
-
-/* Whether the four intermediate pixels at p00, p00 + 1 (above) and p01, p01 + 1 (below) are all transparent
- * black, so that the output pixel is the background whatever the weights. Much of a frame is empty space
- * around the volume; opacity first, because a pixel with opacity is the common case where it is not. */
-static VF_ALWAYS_INLINE bool empty_neighbours(const uint16_t *p00, const uint16_t *p01)
-{
-    if ((p00[3] | p00[7] | p01[3] | p01[7]) != 0)
-        return false;
-    return (p00[0] | p00[1] | p00[2] | p00[4] | p00[5] | p00[6] | p01[0] | p01[1] | p01[2] | p01[4] | p01[5] |
-            p01[6]) == 0;
-}
-
-/* The pixel px (Q1.15 r, g, b, a) as the format's bytes, the background behind it when there is one: store_pixel
- * with the format and the background constants, for the inner loop's specialisations. */
-static VF_ALWAYS_INLINE void store_as(const warp_row_t *w, unsigned char *dst, const uint32_t px[4], vf_format_t format,
-                                      bool have_bg)
-{
-    uint32_t c[3] = {px[0], px[1], px[2]};
-    if (have_bg) {
-        const uint32_t t = VFI_ONE_Q15 - (px[3] > VFI_ONE_Q15 ? VFI_ONE_Q15 : px[3]);
-        c[0] += (t * w->bg[0] + 0x4000u) >> 15;
-        c[1] += (t * w->bg[1] + 0x4000u) >> 15;
-        c[2] += (t * w->bg[2] + 0x4000u) >> 15;
-    }
-    c[0] = c[0] > VFI_ONE_Q15 ? VFI_ONE_Q15 : c[0];
-    c[1] = c[1] > VFI_ONE_Q15 ? VFI_ONE_Q15 : c[1];
-    c[2] = c[2] > VFI_ONE_Q15 ? VFI_ONE_Q15 : c[2];
-    switch (format) {
-    case VF_FORMAT_RGB888:
-        dst[0] = (unsigned char)((c[0] * 255u + 0x4000u) >> 15);
-        dst[1] = (unsigned char)((c[1] * 255u + 0x4000u) >> 15);
-        dst[2] = (unsigned char)((c[2] * 255u + 0x4000u) >> 15);
-        break;
-    case VF_FORMAT_RGB565: {
-        uint32_t word = ((c[0] * 31u + 0x4000u) >> 15) << 11 | ((c[1] * 63u + 0x4000u) >> 15) << 5 |
-                        ((c[2] * 31u + 0x4000u) >> 15);
-        dst[0] = (unsigned char)(word & 0xFFu);
-        dst[1] = (unsigned char)(word >> 8);
-        break;
-    }
-    default: /* VF_FORMAT_XRGB8888: bytes B, G, R, X */
-        dst[0] = (unsigned char)((c[2] * 255u + 0x4000u) >> 15);
-        dst[1] = (unsigned char)((c[1] * 255u + 0x4000u) >> 15);
-        dst[2] = (unsigned char)((c[0] * 255u + 0x4000u) >> 15);
-        dst[3] = 0xFFu;
-        break;
-    }
-}
-
-/* count pixels from dst, each with all four neighbours inside the image (u, v >= 0: the shifts are floors), the
- * first at (u, v), then a step of (du, dv) a pixel; the format and background constants (inner_span). */
-static VF_ALWAYS_INLINE void inner_body(const warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v,
-                                        int64_t du, int64_t dv, unsigned char *dst, uint32_t count,
-                                        const unsigned char *background, vf_format_t format, bool have_bg)
-{
-    const uint32_t bpp = vf_format_bytes(format), mask = w->fraction_mask;
-    for (uint32_t x = 0; x < count; x++, u += du, v += dv, dst += bpp) {
-        const uint16_t *p00 = img + ((size_t)(v >> 32) * (size_t)iw + (size_t)(u >> 32)) * 4;
-        const uint16_t *p01 = p00 + iw * 4;
-        if (empty_neighbours(p00, p01)) { /* exactly what the weights would give: the background */
-            for (uint32_t k = 0; k < bpp; k++)
-                dst[k] = background[k];
-            continue;
-        }
-        const uint32_t fx = (uint32_t)(u >> 16) & mask, fy = (uint32_t)(v >> 16) & mask;
-        const uint32_t w11 = (fx * fy + 0x8000u) >> 16;
-        const uint32_t w00 = 65536u - fx - fy + w11, w10 = fx - w11, w01 = fy - w11;
-        /* written out: at -O2 gcc keeps a loop over the four channels, half again the instructions */
-        const uint32_t px[4] = {(p00[0] * w00 + p00[4] * w10 + p01[0] * w01 + p01[4] * w11 + 0x8000u) >> 16,
-                                (p00[1] * w00 + p00[5] * w10 + p01[1] * w01 + p01[5] * w11 + 0x8000u) >> 16,
-                                (p00[2] * w00 + p00[6] * w10 + p01[2] * w01 + p01[6] * w11 + 0x8000u) >> 16,
-                                (p00[3] * w00 + p00[7] * w10 + p01[3] * w01 + p01[7] * w11 + 0x8000u) >> 16};
-        store_as(w, dst, px, format, have_bg);
-    }
-}
-
-/* inner_body for the row's format and background: a loop for each with VF_SPECIAL_LOOPS, else one that asks */
-static void inner_span(const warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v, int64_t du,
-                       int64_t dv, unsigned char *dst, uint32_t count, const unsigned char *background)
-{
-    if (!VF_SPECIAL_LOOPS) {
-        inner_body(w, img, iw, u, v, du, dv, dst, count, background, w->format, w->have_bg);
-        return;
-    }
-    switch (w->format) {
-    case VF_FORMAT_RGB888:
-        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, true)
-                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, false);
-        break;
-    case VF_FORMAT_RGB565:
-        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, true)
-                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, false);
-        break;
-    default:
-        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, true)
-                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, false);
-        break;
-    }
-}
 
 vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint32_t y0, uint32_t y1)
 {
@@ -143,18 +27,17 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
         return VF_ERR_ARG;
 
     /* The background shows through what the volume leaves: out = C + (1 - A) bg. */
-    warp_row_t w;
+    vfi_warp_row_t w;
     w.r = r;
     w.fraction_mask = (0xFFFFu >> (16 - r->params.warp_bits)) << (16 - r->params.warp_bits);
     w.format = image->format;
-    w.bpp = bpp;
     w.have_bg = false;
     for (int c = 0; c < 3; c++) {
         w.bg[c] = ((uint32_t)r->params.background[c] * VFI_ONE_Q15 + 65535u / 2) / 65535u;
         w.have_bg |= w.bg[c] != 0;
     }
     unsigned char background[4];
-    store_pixel(&w, background, transparent);
+    vfi_warp_background(&w, background);
 
     const int64_t iw = f->int_w, ih = f->int_h;
     const uint16_t *img = r->intermediate;
@@ -179,12 +62,12 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
          * empty); within them, [inner0, inner1) have all four neighbours inside the image (u in [0, w - 1), v in
          * [0, h - 1)). */
         int64_t a0, a1, b0, b1, touch0, touch1, inner0, inner1;
-        span(u_row, f->du_dx_q32, (box_u0 - 1) * ONE_Q32, box_u1 * ONE_Q32, image->width, &a0, &a1);
-        span(v_row, f->dv_dx_q32, (box_v0 - 1) * ONE_Q32, box_v1 * ONE_Q32, image->width, &b0, &b1);
+        span(u_row, f->du_dx_q32, (box_u0 - 1) * VFI_ONE_Q32, box_u1 * VFI_ONE_Q32, image->width, &a0, &a1);
+        span(v_row, f->dv_dx_q32, (box_v0 - 1) * VFI_ONE_Q32, box_v1 * VFI_ONE_Q32, image->width, &b0, &b1);
         touch0 = a0 > b0 ? a0 : b0;
         touch1 = a1 < b1 ? a1 : b1;
-        span(u_row, f->du_dx_q32, 0, (iw - 1) * ONE_Q32, image->width, &a0, &a1);
-        span(v_row, f->dv_dx_q32, 0, (ih - 1) * ONE_Q32, image->width, &b0, &b1);
+        span(u_row, f->du_dx_q32, 0, (iw - 1) * VFI_ONE_Q32, image->width, &a0, &a1);
+        span(v_row, f->dv_dx_q32, 0, (ih - 1) * VFI_ONE_Q32, image->width, &b0, &b1);
         inner0 = a0 > b0 ? a0 : b0;
         inner1 = a1 < b1 ? a1 : b1;
         if (touch1 < touch0)
@@ -194,18 +77,14 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
         if (inner1 <= inner0)
             inner0 = inner1 = touch0;
 
-        for (int64_t x = 0; x < touch0; x++)
-            for (uint32_t k = 0; k < bpp; k++)
-                row[x * bpp + k] = background[k];
+        vfi_warp_fill(row, (uint32_t)touch0, background, w.format);
         for (int64_t x = touch0; x < inner0; x++)
-            pixel_general(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
-        inner_span(&w, img, iw, u_row + inner0 * f->du_dx_q32, v_row + inner0 * f->dv_dx_q32, f->du_dx_q32,
+            vfi_warp_edge(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
+        vfi_warp_inner(&w, img, iw, u_row + inner0 * f->du_dx_q32, v_row + inner0 * f->dv_dx_q32, f->du_dx_q32,
                    f->dv_dx_q32, row + inner0 * bpp, (uint32_t)(inner1 - inner0), background);
         for (int64_t x = inner1 > touch0 ? inner1 : touch0; x < touch1; x++)
-            pixel_general(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
-        for (int64_t x = touch1; x < image->width; x++)
-            for (uint32_t k = 0; k < bpp; k++)
-                row[x * bpp + k] = background[k];
+            vfi_warp_edge(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
+        vfi_warp_fill(row + touch1 * bpp, image->width - (uint32_t)touch1, background, w.format);
     }
     return VF_OK;
 }
@@ -239,40 +118,4 @@ static void span(int64_t start, int64_t step, int64_t lo, int64_t hi, int64_t wi
         *x0 = first_past(-start, -step, -hi, false, width);
         *x1 = first_past(-start, -step, -lo, true, width);
     }
-}
-
-/* Bilinear, with pixels outside the intermediate image transparent. */
-static void pixel_general(const warp_row_t *w, int64_t u_q32, int64_t v_q32, unsigned char *dst)
-{
-    const vf_renderer_t *r = w->r;
-    const int64_t iw = r->factor.int_w, ih = r->factor.int_h;
-    /* Shifted by one pixel, the support (-1, w) x (-1, h) is positive, and shifts act as floor. */
-    int64_t us = u_q32 + ONE_Q32, vs = v_q32 + ONE_Q32;
-    if (!(us > 0 && vs > 0 && us < (iw + 1) * ONE_Q32 && vs < (ih + 1) * ONE_Q32)) {
-        store_pixel(w, dst, transparent);
-        return;
-    }
-    int32_t iu = (int32_t)(us >> 32) - 1, iv = (int32_t)(vs >> 32) - 1;
-    uint32_t fx = (uint32_t)(us >> 16) & w->fraction_mask, fy = (uint32_t)(vs >> 16) & w->fraction_mask;
-    uint32_t w11 = (fx * fy + 0x8000u) >> 16;
-    const uint32_t weight[4] = {65536u - fx - fy + w11, fx - w11, fy - w11, w11};
-    const int32_t du[4] = {0, 1, 0, 1}, dv[4] = {0, 0, 1, 1};
-    uint32_t acc[4] = {0x8000u, 0x8000u, 0x8000u, 0x8000u};
-    for (int n = 0; n < 4; n++) {
-        int32_t pu = iu + du[n], pv = iv + dv[n];
-        if (weight[n] == 0 || pu < 0 || pv < 0 || pu >= iw || pv >= ih)
-            continue;
-        const uint16_t *p = r->intermediate + ((size_t)pv * (size_t)iw + (size_t)pu) * 4;
-        for (int c = 0; c < 4; c++)
-            acc[c] += p[c] * weight[n]; /* at most 32768 * 65536 in all */
-    }
-    for (int c = 0; c < 4; c++)
-        acc[c] >>= 16;
-    store_pixel(w, dst, acc);
-}
-
-/* C + (1 - A) background, packed: store_as for any format, outside the inner loop. */
-static void store_pixel(const warp_row_t *w, unsigned char *dst, const uint32_t px[4])
-{
-    store_as(w, dst, px, w->format, w->have_bg);
 }
