@@ -74,14 +74,15 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
             touch0 = touch1 = 0;
         inner0 = inner0 > touch0 ? inner0 : touch0; /* inside the box's footprint too */
         inner1 = inner1 < touch1 ? inner1 : touch1;
-        if (inner1 <= inner0)
+        if (inner1 <= inner0 || !VF_SPECIAL_LOOPS) /* the small build: the edge's bilinear for every pixel */
             inner0 = inner1 = touch0;
 
         vfi_warp_fill(row, (uint32_t)touch0, background, w.format);
         for (int64_t x = touch0; x < inner0; x++)
             vfi_warp_edge(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
-        vfi_warp_inner(&w, img, iw, u_row + inner0 * f->du_dx_q32, v_row + inner0 * f->dv_dx_q32, f->du_dx_q32,
-                   f->dv_dx_q32, row + inner0 * bpp, (uint32_t)(inner1 - inner0), background);
+        if (VF_SPECIAL_LOOPS)
+            vfi_warp_inner(&w, img, iw, u_row + inner0 * f->du_dx_q32, v_row + inner0 * f->dv_dx_q32, f->du_dx_q32,
+                           f->dv_dx_q32, row + inner0 * bpp, (uint32_t)(inner1 - inner0), background);
         for (int64_t x = inner1 > touch0 ? inner1 : touch0; x < touch1; x++)
             vfi_warp_edge(&w, u_row + x * f->du_dx_q32, v_row + x * f->dv_dx_q32, row + x * bpp);
         vfi_warp_fill(row + touch1 * bpp, image->width - (uint32_t)touch1, background, w.format);
