@@ -138,44 +138,53 @@ static inline void invisible(encoder_t *e, uint32_t n)
     }
 }
 
-/* Cells [c0, c1) of the row whose four voxel rows (j, j+1) x (k, k+1) are r00, r01, r10, r11, read one by one:
- * n cells (a constant where it matters, as in column_ranges) from c0. */
-static inline void read_block(encoder_t *e, const uint8_t *r00, const uint8_t *r01, const uint8_t *r10,
-                              const uint8_t *r11, uint32_t c0, uint32_t n, const uint16_t *visible_from)
+/* Each cell's range: the ranges of its two columns joined (n a constant where it matters, as in column_ranges). */
+static inline void cell_ranges(const uint8_t *lo, const uint8_t *hi, uint32_t n, uint8_t *cell_lo, uint8_t *cell_hi)
 {
-    /* Column c's range over the four rows; cell c spans columns c and c + 1 (column n_i is the copy's padding,
-     * so it exists). */
-    uint8_t lo[CHUNK + 1], hi[CHUNK + 1];
-    column_ranges(r00 + c0, r01 + c0, r10 + c0, r11 + c0, n, lo, hi);
-    lo[n] = min2(min2(r00[c0 + n], r01[c0 + n]), min2(r10[c0 + n], r11[c0 + n]));
-    hi[n] = max2(max2(r00[c0 + n], r01[c0 + n]), max2(r10[c0 + n], r11[c0 + n]));
-    uint32_t skip = e->skip, length = e->length;
     for (uint32_t c = 0; c < n; c++) {
-        if (max2(hi[c], hi[c + 1]) >= visible_from[min2(lo[c], lo[c + 1])]) {
-            length++;
-        } else if (length) { /* a run ends: emit it, start counting invisible cells again */
-            emit(e, skip, length);
-            skip = 1;
-            length = 0;
+        cell_lo[c] = min2(lo[c], lo[c + 1]);
+        cell_hi[c] = max2(hi[c], hi[c + 1]);
+    }
+}
+
+/* Cells [c0, c1) of the row whose four voxel rows (j, j+1) x (k, k+1) are r00, r01, r10, r11 (of n_i cells), read
+ * one by one, a chunk at a time. A chunk's ranges are found in loops of constant count whenever its columns lie
+ * in the row, also for the cells past c1 (a mixed brick's 8 cells cost what 64 do in vector loops, and far less
+ * than a loop of variable count); only the cells up to c1 are then classified. */
+static void read_cells(encoder_t *e, const uint8_t *r00, const uint8_t *r01, const uint8_t *r10, const uint8_t *r11,
+                       uint32_t c0, uint32_t c1, uint32_t ni, const uint16_t *visible_from)
+{
+    uint32_t skip = e->skip, length = e->length;
+    for (uint32_t i0 = c0; i0 < c1; i0 += CHUNK) {
+        const uint32_t n = c1 - i0 < CHUNK ? c1 - i0 : CHUNK;
+        /* Column c's range over the four rows; cell c spans columns c and c + 1 (column n_i is the copy's
+         * padding, so it exists). */
+        uint8_t lo[CHUNK + 1], hi[CHUNK + 1], cell_lo[CHUNK], cell_hi[CHUNK];
+        if (i0 + CHUNK <= ni) {
+            column_ranges(r00 + i0, r01 + i0, r10 + i0, r11 + i0, CHUNK, lo, hi); /* a fixed count */
+            lo[CHUNK] = min2(min2(r00[i0 + CHUNK], r01[i0 + CHUNK]), min2(r10[i0 + CHUNK], r11[i0 + CHUNK]));
+            hi[CHUNK] = max2(max2(r00[i0 + CHUNK], r01[i0 + CHUNK]), max2(r10[i0 + CHUNK], r11[i0 + CHUNK]));
+            cell_ranges(lo, hi, CHUNK, cell_lo, cell_hi);
         } else {
-            skip++;
+            column_ranges(r00 + i0, r01 + i0, r10 + i0, r11 + i0, n, lo, hi);
+            lo[n] = min2(min2(r00[i0 + n], r01[i0 + n]), min2(r10[i0 + n], r11[i0 + n]));
+            hi[n] = max2(max2(r00[i0 + n], r01[i0 + n]), max2(r10[i0 + n], r11[i0 + n]));
+            cell_ranges(lo, hi, n, cell_lo, cell_hi);
+        }
+        for (uint32_t c = 0; c < n; c++) {
+            if (cell_hi[c] >= visible_from[cell_lo[c]]) {
+                length++;
+            } else if (length) { /* a run ends: emit it, start counting invisible cells again */
+                emit(e, skip, length);
+                skip = 1;
+                length = 0;
+            } else {
+                skip++;
+            }
         }
     }
     e->skip = skip;
     e->length = length;
-}
-
-/* Cells [c0, c1): whole chunks, then whole bricks, then the rest, so that most blocks have a constant count. */
-static void read_cells(encoder_t *e, const uint8_t *r00, const uint8_t *r01, const uint8_t *r10, const uint8_t *r11,
-                       uint32_t c0, uint32_t c1, const uint16_t *visible_from)
-{
-    uint32_t c = c0;
-    for (; c1 - c >= CHUNK; c += CHUNK)
-        read_block(e, r00, r01, r10, r11, c, CHUNK, visible_from);
-    for (; c1 - c >= VFI_BRICK; c += VFI_BRICK)
-        read_block(e, r00, r01, r10, r11, c, VFI_BRICK, visible_from);
-    if (c < c1)
-        read_block(e, r00, r01, r10, r11, c, c1 - c, visible_from);
 }
 
 static inline int brick_class(const vfi_classify_t *cls, const uint8_t *range)
@@ -210,7 +219,7 @@ size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *l, const vfi_cla
             const uint8_t *r01 = r00 + l->row, *r10 = r00 + l->slice, *r11 = r10 + l->row;
             e.skip = e.length = 0;
             if (!bricks) {
-                read_cells(&e, r00, r01, r10, r11, 0, l->ni, cls->visible_from);
+                read_cells(&e, r00, r01, r10, r11, 0, l->ni, l->ni, cls->visible_from);
             } else {
                 const uint8_t *row_bricks =
                     bricks->range + (k / VFI_BRICK) * step[k_axis] + (j / VFI_BRICK) * step[l->j_axis];
@@ -221,7 +230,7 @@ size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *l, const vfi_cla
                         int next = BRICK_EMPTY;
                         while (b1 < bricks_i && (next = brick_class(cls, row_bricks + b1 * step_i)) == BRICK_MIXED)
                             b1++;
-                        read_cells(&e, r00, r01, r10, r11, b * VFI_BRICK, min_u32(b1 * VFI_BRICK, l->ni),
+                        read_cells(&e, r00, r01, r10, r11, b * VFI_BRICK, min_u32(b1 * VFI_BRICK, l->ni), l->ni,
                                    cls->visible_from);
                         b = b1;
                         kind = next;
