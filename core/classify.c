@@ -77,8 +77,8 @@ vf_status_t vfi_classify(vfi_classify_t *cls, const vf_tf_t *tf)
             hi++;
         cls->visible_from[lo] = (uint16_t)hi;
     }
-    uint16_t until = 256;
-    for (uint32_t lo = 256; lo-- > 0;) {
+    uint16_t until = 256; /* for the run encoder's bricks (VF_RUN_BRICKS) */
+    for (uint32_t lo = 256; VF_RUN_BRICKS && lo-- > 0;) {
         if (cls->visible_from[lo] != lo)
             until = (uint16_t)lo;
         cls->solid_until[lo] = until;

@@ -115,7 +115,7 @@ vf_status_t vf_renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, size
     size_t total = VFI_ALIGN + vfi_arena_block(sizeof(vf_renderer_t));
     for (int a = 0; a < 3; a++)
         total += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
-    total += vfi_bricks_bytes(vol->dims);
+    total += VF_RUN_BRICKS ? vfi_bricks_bytes(vol->dims) : 0;
     total += vfi_classify_bytes(n) + table_bytes(p) + lit_table_bytes(p) + normals_bytes(p, vol) + order2_bytes(p);
     total += vfi_arena_block(sizeof(uint16_t) * 4 * intermediate_pixels(vol->dims, p->rays, &w, &ni)) +
              extent_bytes(vol->dims, p->rays);
@@ -146,8 +146,11 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
         vfi_layout(vol->dims, a, &r->layout[a]);
         r->slices[a] = vfi_arena_alloc(arena, vfi_slices_bytes(vol->dims, a));
     }
-    uint8_t *brick_range = vfi_arena_alloc(arena, vfi_bricks_bytes(vol->dims));
-    vfi_bricks_init(&r->bricks, vol->dims, brick_range);
+    uint8_t *brick_range = NULL;
+    if (VF_RUN_BRICKS) {
+        brick_range = vfi_arena_alloc(arena, vfi_bricks_bytes(vol->dims));
+        vfi_bricks_init(&r->bricks, vol->dims, brick_range);
+    }
     const uint32_t n = p->table_size;
     const bool lut = p->correction == VF_CORRECTION_LUT;
     /* a trilinear lookup's last slab, of one slice, looks its 2D entries up bilinearly */
@@ -164,7 +167,7 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     r->intermediate_max = intermediate_pixels(vol->dims, p->rays, &r->max_int_w, &r->max_ni);
     r->intermediate = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * r->intermediate_max);
     r->row_extent = VF_SPECIAL_LOOPS ? vfi_arena_alloc(arena, extent_bytes(vol->dims, p->rays)) : NULL;
-    if (s != VF_OK || (VF_SPECIAL_LOOPS && !r->row_extent) || !r->slices[0] || !r->slices[1] || !r->slices[2] || !brick_range || !r->table ||
+    if (s != VF_OK || (VF_SPECIAL_LOOPS && !r->row_extent) || !r->slices[0] || !r->slices[1] || !r->slices[2] || (VF_RUN_BRICKS && !brick_range) || !r->table ||
         (lut && (!r->lut_f || !r->lut_g)) || (has_view_table(p) && !r->view_table) || !r->intermediate)
         return VF_ERR_NOMEM; /* the caller's arena is theirs to reset; *out stays NULL */
 #if VF_LIGHTING
@@ -188,7 +191,7 @@ vf_status_t vf_renderer_create(vf_renderer_t **out, const vf_params_t *p, const 
     r->memory.renderer = vfi_arena_block(sizeof *r);
     for (int a = 0; a < 3; a++)
         r->memory.slices += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
-    r->memory.slices += vfi_bricks_bytes(vol->dims);
+    r->memory.slices += VF_RUN_BRICKS ? vfi_bricks_bytes(vol->dims) : 0;
     r->memory.classify = vfi_classify_bytes(n);
     r->memory.tables = table_bytes(p);
     r->memory.intermediate = vfi_arena_block(sizeof(uint16_t) * 4 * r->intermediate_max) +
@@ -208,7 +211,8 @@ vf_status_t vf_renderer_set_window(vf_renderer_t *r, vf_window_t window)
         return VF_ERR_WINDOW;
     r->have_frame = false; /* a frame begun before must not composite half old, half new data */
     vfi_slices_build(&r->volume, window, r->slices);
-    vfi_bricks_build(&r->bricks, r->slices[2], r->volume.dims);
+    if (VF_RUN_BRICKS)
+        vfi_bricks_build(&r->bricks, r->slices[2], r->volume.dims);
     r->have_window = true;
     return r->have_tf ? encode_runs(r) : VF_OK;
 }

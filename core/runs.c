@@ -50,6 +50,8 @@ size_t vfi_runs_index_bytes(const vfi_layout_t *l)
 
 size_t vfi_bricks_bytes(const uint32_t dims[3])
 {
+    if (!VF_RUN_BRICKS)
+        return 0;
     size_t n = 1;
     for (int a = 0; a < 3; a++)
         n *= (dims[a] + VFI_BRICK - 1) / VFI_BRICK;
@@ -74,6 +76,8 @@ static inline void fold_row(const uint8_t *row, uint32_t n, uint8_t *lo, uint8_t
 
 void vfi_bricks_build(vfi_bricks_t *b, const uint8_t *z, const uint32_t dims[3])
 {
+    if (!VF_RUN_BRICKS || !b->range)
+        return;
     vfi_layout_t l;
     vfi_layout(dims, 2, &l); /* i = x, j = y, k = z */
     uint8_t *out = b->range;
@@ -160,7 +164,7 @@ static void read_cells(encoder_t *e, const uint8_t *r00, const uint8_t *r01, con
         /* Column c's range over the four rows; cell c spans columns c and c + 1 (column n_i is the copy's
          * padding, so it exists). */
         uint8_t lo[CHUNK + 1], hi[CHUNK + 1], cell_lo[CHUNK], cell_hi[CHUNK];
-        if (i0 + CHUNK <= ni) {
+        if (VF_RUN_BRICKS && i0 + CHUNK <= ni) {
             column_ranges(r00 + i0, r01 + i0, r10 + i0, r11 + i0, CHUNK, lo, hi); /* a fixed count */
             lo[CHUNK] = min2(min2(r00[i0 + CHUNK], r01[i0 + CHUNK]), min2(r10[i0 + CHUNK], r11[i0 + CHUNK]));
             hi[CHUNK] = max2(max2(r00[i0 + CHUNK], r01[i0 + CHUNK]), max2(r10[i0 + CHUNK], r11[i0 + CHUNK]));
@@ -202,6 +206,8 @@ size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *l, const vfi_cla
     runs->nj = l->nj;
     /* a brick's step in the range array along each object axis */
     size_t step[3] = {0, 0, 0};
+    if (!VF_RUN_BRICKS || (bricks && !bricks->range))
+        bricks = NULL; /* a build without them, or none made */
     if (bricks) {
         step[0] = 2;
         step[1] = 2 * (size_t)bricks->n[0];

@@ -14,7 +14,7 @@
  * with the lowest and highest scalar of the voxels its cells read (made once per window). A transfer function
  * then settles a whole brick by its range: no cell of it visible, or every cell visible (every scalar of the
  * range visible alone: vfi_range_solid), and the encoder reads the cells of the other bricks only. The run lists
- * are the same as from reading every cell.
+ * are the same as from reading every cell. Builds without them (VF_RUN_BRICKS 0) read every cell.
  */
 #ifndef VF_RUNS_H
 #define VF_RUNS_H

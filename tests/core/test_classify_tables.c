@@ -146,8 +146,9 @@ static void check_classification(const vfi_classify_t *cls, const vf_tf_t *tf)
             return;
         }
     }
-    /* solid_until[lo]: the smallest s >= lo whose scalar alone touches no entry with tau > 0 (brute force) */
-    for (uint32_t lo = 0; lo < 256; lo++) {
+    /* solid_until[lo]: the smallest s >= lo whose scalar alone touches no entry with tau > 0 (brute force); made
+     * only for the run encoder's bricks */
+    for (uint32_t lo = 0; VF_RUN_BRICKS && lo < 256; lo++) {
         uint32_t want = 256;
         for (uint32_t s = lo; s < 256 && want == 256; s++) {
             bool alone = false;
