@@ -77,6 +77,12 @@ vf_status_t vfi_classify(vfi_classify_t *cls, const vf_tf_t *tf)
             hi++;
         cls->visible_from[lo] = (uint16_t)hi;
     }
+    uint16_t until = 256; /* for the run encoder's bricks (VF_RUN_BRICKS) */
+    for (uint32_t lo = 256; VF_RUN_BRICKS && lo-- > 0;) {
+        if (cls->visible_from[lo] != lo)
+            until = (uint16_t)lo;
+        cls->solid_until[lo] = until;
+    }
 
     /* Interval m (entries m, m + 1): w = (2 t0 c0 + t0 c1 + t1 c0 + 2 t1 c1) / (3 (t0 + t1)), the mean colour
      * weighted by the linear extinction; tau in Q.24 here keeps the sums of products below 2^63. */

@@ -25,6 +25,10 @@ typedef struct vfi_classify {
     /* Whether [lo, hi] touches a visible entry only grows with hi (and as lo falls), so one threshold per lo says
      * it all: the smallest hi >= lo for which it does, 256 when none. One load per cell in the run encoder. */
     uint16_t visible_from[256];
+    /* Whether every [a, b] inside [lo, hi] touches a visible entry: so when each scalar of [lo, hi] does alone
+     * (visible_from[s] = s), which holds for hi below one threshold per lo: the smallest s >= lo whose scalar
+     * alone touches none, 256 when none. The run encoder settles a brick of cells with it (runs.h). */
+    uint16_t solid_until[256];
 } vfi_classify_t;
 
 /* Bytes vfi_classify_alloc takes from an arena for n entries. */
@@ -54,6 +58,12 @@ static inline uint32_t vfi_entry_of_sample(const vfi_classify_t *cls, uint64_t s
 static inline bool vfi_range_visible(const vfi_classify_t *cls, uint32_t scalar_lo, uint32_t scalar_hi)
 {
     return scalar_hi >= cls->visible_from[scalar_lo];
+}
+
+/* Whether every segment whose samples lie between 8-bit scalars inside [lo, hi] touches a visible entry. */
+static inline bool vfi_range_solid(const vfi_classify_t *cls, uint32_t scalar_lo, uint32_t scalar_hi)
+{
+    return scalar_hi < cls->solid_until[scalar_lo];
 }
 
 /* Table position of a sample in Q8.32 for a bilinear lookup: x = s (N - 1) / 255 in Q.16, floor(x 2^16) exactly

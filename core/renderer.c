@@ -129,6 +129,7 @@ static vf_status_t renderer_bytes(const vf_params_t *p, const vf_volume_t *vol, 
     size_t total = VFI_ALIGN + vfi_arena_block(sizeof(vf_renderer_t));
     for (int a = 0; a < 3 && !pre; a++)
         total += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
+    total += VF_RUN_BRICKS ? vfi_bricks_bytes(vol->dims) : 0;
     total += vfi_classify_bytes(n) + table_bytes(p) + lit_table_bytes(p) + normals_bytes(p, vol, pre != NULL) +
              order2_bytes(p);
     total += vfi_arena_block(sizeof(uint16_t) * 4 * reserved_intermediate(vol, p->rays, pre, &w, &ni)) +
@@ -175,6 +176,11 @@ static vf_status_t renderer_create(vf_renderer_t **out, const vf_params_t *p, co
         r->built_slices[a] = pre ? NULL : vfi_arena_alloc(arena, vfi_slices_bytes(vol->dims, a));
         r->slices[a] = pre ? pre->slices[a] : r->built_slices[a];
     }
+    uint8_t *brick_range = NULL;
+    if (VF_RUN_BRICKS) {
+        brick_range = vfi_arena_alloc(arena, vfi_bricks_bytes(vol->dims));
+        vfi_bricks_init(&r->bricks, vol->dims, brick_range);
+    }
     const uint32_t n = p->table_size;
     const bool lut = p->correction == VF_CORRECTION_LUT;
     /* a trilinear lookup's last slab, of one slice, looks its 2D entries up bilinearly */
@@ -191,7 +197,8 @@ static vf_status_t renderer_create(vf_renderer_t **out, const vf_params_t *p, co
     r->intermediate_max = reserved_intermediate(vol, p->rays, pre, &r->max_int_w, &r->max_ni);
     r->intermediate = vfi_arena_alloc(arena, sizeof(uint16_t) * 4 * r->intermediate_max);
     r->row_extent = VF_SPECIAL_LOOPS ? vfi_arena_alloc(arena, extent_bytes(vol->dims, p->rays)) : NULL;
-    if (s != VF_OK || (VF_SPECIAL_LOOPS && !r->row_extent) || !r->slices[0] || !r->slices[1] || !r->slices[2] || !r->table ||
+    if (s != VF_OK || (VF_SPECIAL_LOOPS && !r->row_extent) || !r->slices[0] || !r->slices[1] || !r->slices[2] ||
+        (VF_RUN_BRICKS && !brick_range) || !r->table ||
         (lut && (!r->lut_f || !r->lut_g)) || (has_view_table(p) && !r->view_table) || !r->intermediate)
         return VF_ERR_NOMEM; /* the caller's arena is theirs to reset; *out stays NULL */
 #if VF_LIGHTING
@@ -215,7 +222,8 @@ static vf_status_t renderer_create(vf_renderer_t **out, const vf_params_t *p, co
     r->memory.renderer = vfi_arena_block(sizeof *r);
     for (int a = 0; a < 3 && !pre; a++)
         r->memory.slices += vfi_arena_block(vfi_slices_bytes(vol->dims, a));
-    r->memory.classify = vfi_classify_bytes(n);
+    /* the bricks' ranges serve classification (which bricks a transfer function hides), so they count there */
+    r->memory.classify = vfi_classify_bytes(n) + (VF_RUN_BRICKS ? vfi_bricks_bytes(vol->dims) : 0);
     r->memory.tables = table_bytes(p);
     r->memory.intermediate = vfi_arena_block(sizeof(uint16_t) * 4 * r->intermediate_max) +
                              extent_bytes(vol->dims, p->rays);
@@ -251,6 +259,8 @@ vf_status_t vf_renderer_set_window(vf_renderer_t *r, vf_window_t window)
     if (VF_BUILD_SLICES && !is_prebuilt(r))
         vfi_slices_build(&r->volume, window, r->built_slices);
     r->window = window;
+    if (VF_RUN_BRICKS)
+        vfi_bricks_build(&r->bricks, r->slices[2], r->volume.dims);
     r->have_window = true;
     return r->have_tf ? encode_runs(r) : VF_OK;
 }
@@ -887,7 +897,8 @@ static vf_status_t encode_runs(vf_renderer_t *r)
         size_t index_bytes = vfi_runs_index_bytes(&r->layout[a]), free_bytes = 0, values;
         uint32_t *row_start = short_of_memory ? NULL : vfi_arena_alloc(arena, index_bytes);
         uint16_t *pairs = row_start ? vfi_arena_top(arena, &free_bytes) : NULL;
-        values = vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, row_start, pairs, free_bytes / sizeof(uint16_t));
+        values = vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, &r->bricks, row_start, pairs,
+                                 free_bytes / sizeof(uint16_t));
         runs->row_start = row_start;
         runs->pairs = pairs;
         runs->nj = r->layout[a].nj;

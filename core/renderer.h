@@ -3,7 +3,7 @@
  * renderer.h: the renderer's private state, shared by the stage files (renderer.c, composite.c, warp.c).
  *
  * Everything lives in the caller's arena, in this order:
- *   [renderer | slices x3 | classification | table scratch | tables | intermediate image] mark [run lists]
+ *   [renderer | slices x3, bricks | classification | table scratch | tables | intermediate image] mark [run lists]
  * The part before the mark depends only on the volume's size and the parameters and is reserved once; the run
  * lists depend on the transfer function and are rebuilt after rewinding to the mark.
  */
@@ -32,6 +32,7 @@ struct vf_renderer {
     vfi_layout_t layout[3];
     const uint8_t *slices[3];  /* the arena's (built_slices), or prebuilt read-only storage */
     uint8_t *built_slices[3];  /* what set_window writes; NULL over prebuilt storage */
+    vfi_bricks_t bricks;       /* the slices' ranges a brick, for the run encoder; made with them */
     bool have_window;
     vf_window_t window;        /* the window of the slices */
     bool prebuilt;             /* made by vf_renderer_create_prebuilt: its slices, normals and run lists below */

@@ -9,6 +9,12 @@
  * a segment whose two cells are invisible contributes exactly nothing and is skipped without being read.
  *
  * Each row (k, j) of cells is a list of (skip, length) pairs: skip invisible cells, then length visible ones.
+ *
+ * Bricks: the cells in blocks of VFI_BRICK a side, in object space so that one set serves all three copies, each
+ * with the lowest and highest scalar of the voxels its cells read (made once per window). A transfer function
+ * then settles a whole brick by its range: no cell of it visible, or every cell visible (every scalar of the
+ * range visible alone: vfi_range_solid), and the encoder reads the cells of the other bricks only. The run lists
+ * are the same as from reading every cell. Builds without them (VF_RUN_BRICKS 0) read every cell.
  */
 #ifndef VF_RUNS_H
 #define VF_RUNS_H
@@ -22,13 +28,31 @@ typedef struct vfi_runs {
     uint32_t nj;         /* rows per slab */
 } vfi_runs_t;
 
+/* Cells a brick side. 8: a brick's range costs 2 bytes for 512 cells, and is settled with two loads for the 8
+ * cells of each row through it. */
+#define VFI_BRICK 8
+
+typedef struct vfi_bricks {
+    uint8_t *range;   /* [n[0] n[1] n[2]] lowest and highest scalar of each brick, x fastest */
+    uint32_t n[3];    /* bricks along x, y, z: ceil(dims / VFI_BRICK) */
+} vfi_bricks_t;
+
 size_t vfi_runs_index_bytes(const vfi_layout_t *layout);
+
+size_t vfi_bricks_bytes(const uint32_t dims[3]);
+/* Point bricks at range (vfi_bricks_bytes of memory) and size it for the volume. */
+void vfi_bricks_init(vfi_bricks_t *bricks, const uint32_t dims[3], uint8_t *range);
+/* The bricks' ranges from the copy for principal axis 2 (x fastest, the layout of slices.h). Brick b covers
+ * cells b VFI_BRICK .. b VFI_BRICK + VFI_BRICK - 1 along each axis, which read voxels up to one further, the
+ * last voxel standing for the copies' padding. */
+void vfi_bricks_build(vfi_bricks_t *bricks, const uint8_t *z_copy, const uint32_t dims[3]);
 
 /* Encode in one pass: the pairs go into pairs while they fit in `capacity` uint16 values, the row index into
  * row_start (when not NULL). Returns the values the whole encoding needs; more than capacity means it did not
- * fit (the pairs are then incomplete). pairs NULL: count only. */
+ * fit (the pairs are then incomplete). pairs NULL: count only. bricks NULL: every cell is read (the tests'
+ * oracle); else the bricks of the same window. */
 size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *layout, const vfi_classify_t *cls,
-                       uint32_t *row_start, uint16_t *pairs, size_t capacity);
+                       const vfi_bricks_t *bricks, uint32_t *row_start, uint16_t *pairs, size_t capacity);
 
 /* Whether run lists made elsewhere (row_count index entries, pair_count values) are whole for this layout: the
  * index starts at 0, never falls, ends at pair_count, every row holds whole pairs and at most n_i cells. */

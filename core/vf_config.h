@@ -77,6 +77,14 @@
 #define VF_SPECIAL_LOOPS 1
 #endif
 
+/* Bricks for the run encoder (runs.h): each 8x8x8 block of cells keeps its scalar range (2 bytes per 512 cells,
+ * made per window), so that a transfer-function change settles whole empty and solid blocks without reading their
+ * cells; the same run lists either way. 0 leaves them out (about 1 KB of Cortex-M4 code, and their memory), and
+ * the encoder reads every cell. By default with the special loops, which the microcontroller leaves out too. */
+#ifndef VF_RUN_BRICKS
+#define VF_RUN_BRICKS VF_SPECIAL_LOOPS
+#endif
+
 /* The point and preint1 loops of the default path look each pixel's table entry up one open pixel ahead of its
  * blend (composite_order0.c, composite_order1.c), so that on a core that runs ahead the branches on the entry do
  * not wait for its load. 0: each entry looked up just before its blend, for cores without caches or out-of-order

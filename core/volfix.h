@@ -268,7 +268,7 @@ typedef struct vf_memory {
     size_t renderer;     /* the renderer's own struct */
     size_t slices;       /* 8-bit scalar slices, one copy per principal axis */
     size_t runs;         /* run-length encoding of the visible cells, per principal axis */
-    size_t classify;     /* per-entry extinction and colour, visibility prefix */
+    size_t classify;     /* per-entry extinction and colour, visibility prefix, the bricks' scalar ranges */
     size_t tables;       /* point table and (preint1) the 2D table, and with lighting its front-weighted table */
     size_t normals;      /* lighting: normal codes and gradient magnitudes, per principal axis; the shade table */
     size_t intermediate; /* the intermediate image at its largest */

@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /* loop.c: the viewer's event loop (see viewer.h). */
+#define _GNU_SOURCE /* ppoll, in glibc and musl */
 #include "viewer.h"
 
 #include <errno.h>
@@ -447,19 +448,23 @@ static void teardown(loop_t *L)
     vfp_image_free(&L->frame);
 }
 
-/* The earliest of the deadlines, as a poll timeout in ms (-1: none). */
-static int timeout_ms(uint64_t now, const uint64_t *deadlines, int n)
+/* The earliest of the deadlines, as a ppoll timeout (NULL: none). To the nanosecond rather than poll's
+ * millisecond, which rounded up would wake the loop up to 1 ms after a scripted event is due, and that wait
+ * counts in its latency. */
+static const struct timespec *timeout_at(uint64_t now, const uint64_t *deadlines, int n, struct timespec *ts)
 {
     uint64_t first = 0;
     for (int i = 0; i < n; i++)
         if (deadlines[i] && (!first || deadlines[i] < first))
             first = deadlines[i];
     if (!first)
-        return -1;
-    if (first <= now)
-        return 0;
-    uint64_t ms = (first - now + 999999) / 1000000;
-    return ms > 60000 ? 60000 : (int)ms;
+        return NULL;
+    uint64_t wait = first <= now ? 0 : first - now;
+    if (wait > UINT64_C(60000000000))
+        wait = UINT64_C(60000000000);
+    ts->tv_sec = (time_t)(wait / 1000000000u);
+    ts->tv_nsec = (long)(wait % 1000000000u);
+    return ts;
 }
 
 vfp_status_t viewer_loop(viewer_t *v)
@@ -557,7 +562,8 @@ vfp_status_t viewer_loop(viewer_t *v)
         fds[nfds++] = (struct pollfd){.fd = L.have_worker ? L.worker.wake_fd[0] : -1, .events = POLLIN};
         fds[nfds++] = (struct pollfd){.fd = in_fd, .events = POLLIN};
         uint64_t deadlines[3] = {v->input_ops->deadline_ns(&L.input), full_at, L.display_open ? 0 : L.reopen_at};
-        int rc = poll(fds, (nfds_t)nfds, timeout_ms(now_ns(), deadlines, 3));
+        struct timespec ts;
+        int rc = ppoll(fds, (nfds_t)nfds, timeout_at(now_ns(), deadlines, 3, &ts), NULL);
         if (rc < 0 && errno != EINTR) {
             fprintf(stderr, "volfix: poll: %s\n", strerror(errno));
             status = VFP_ERR;

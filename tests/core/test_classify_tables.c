@@ -146,6 +146,23 @@ static void check_classification(const vfi_classify_t *cls, const vf_tf_t *tf)
             return;
         }
     }
+    /* solid_until[lo]: the smallest s >= lo whose scalar alone touches no entry with tau > 0 (brute force); made
+     * only for the run encoder's bricks */
+    for (uint32_t lo = 0; VF_RUN_BRICKS && lo < 256; lo++) {
+        uint32_t want = 256;
+        for (uint32_t s = lo; s < 256 && want == 256; s++) {
+            bool alone = false;
+            for (uint32_t e = cls->first_of_scalar[s]; e < cls->end_of_scalar[s]; e++)
+                alone = alone || cls->tau_q28[e] > 0;
+            if (!alone)
+                want = s;
+        }
+        if (cls->solid_until[lo] != want) {
+            check_fail(__FILE__, __LINE__, "solid_until[%u] = %u, want %u (n %u)", lo, cls->solid_until[lo], want,
+                       cls->n);
+            return;
+        }
+    }
 }
 
 static void classify_random(void)

@@ -369,13 +369,141 @@ static void runs_count_matches_fill(void)
         vf_tf_t tf = random_tf();
         CHECK_EQ(vf_renderer_set_tf(r, &tf), VF_OK);
         for (int ka = 0; ka < 3; ka++) {
-            size_t count = vfi_runs_encode(r->slices[ka], &r->layout[ka], &r->cls, NULL, NULL, 0);
+            size_t count = vfi_runs_encode(r->slices[ka], &r->layout[ka], &r->cls, &r->bricks, NULL, NULL, 0);
             const vfi_layout_t *l = &r->layout[ka];
             CHECK_EQ(count, r->runs[ka].row_start[(l->nk - 1) * l->nj]);
         }
     }
 }
 
+/* ---- bricks ----------------------------------------------------------------------------------------- */
+
+static uint16_t pairs_cells[32 * 33 * 33], pairs_bricks[32 * 33 * 33];
+static uint32_t index_cells[32 * 33 + 1], index_bricks[32 * 33 + 1];
+
+/* A value at or beside an edge of runs_bricks_match_cells's intervals (multiples of 32 and their neighbours),
+ * where an off-by-one in a brick's test would show, or any value. */
+static uint32_t edge_value(void)
+{
+    if (rnd(4) == 0)
+        return rnd(256);
+    const int v = 32 * (int)rnd(9) + (int)rnd(3) - 1;
+    return v < 0 ? 0 : v > 255 ? 255 : (uint32_t)v;
+}
+
+/* A volume of up to 32 a side whose bricks come out empty, solid and mixed: plateaus of one value with a sphere
+ * and a slab of others in them, edges between them soft or hard, and noise in some volumes only. */
+static vf_volume_t brick_volume(void)
+{
+    vf_volume_t v;
+    for (int a = 0; a < 3; a++) {
+        v.dims[a] = 2 + rnd(31);
+        v.spacing_q16[a] = 65536;
+    }
+    v.type = VF_VOXEL_U8;
+    const uint32_t nx = v.dims[0], ny = v.dims[1], nz = v.dims[2];
+    const int cx = (int)rnd(nx), cy = (int)rnd(ny), cz = (int)rnd(nz), rad = 1 + (int)rnd(14);
+    const uint32_t outside = edge_value(), inside = edge_value(), slab = edge_value(), slab_z = rnd(nz),
+                   noise = rnd(3);
+    const uint32_t soft = rnd(2);
+    for (uint32_t z = 0; z < nz; z++)
+        for (uint32_t y = 0; y < ny; y++)
+            for (uint32_t x = 0; x < nx; x++) {
+                int d2 = ((int)x - cx) * ((int)x - cx) + ((int)y - cy) * ((int)y - cy) + ((int)z - cz) * ((int)z - cz);
+                uint32_t val = d2 < rad * rad ? inside : outside;
+                if (soft && d2 >= rad * rad && d2 < (rad + 2) * (rad + 2))
+                    val = (inside + outside) / 2;
+                if (z == slab_z)
+                    val = slab;
+                if (noise && rnd(400 / noise) == 0)
+                    val = rnd(256);
+                vox8[((size_t)z * ny + y) * nx + x] = (uint8_t)val;
+            }
+    v.voxels = vox8;
+    return v;
+}
+
+/* The encoder with bricks gives every axis the run lists and row index of reading every cell. */
+static void compare_bricks(const vf_renderer_t *r, const char *what, uint32_t a, uint32_t b)
+{
+    for (int ka = 0; ka < 3; ka++) {
+        const vfi_layout_t *l = &r->layout[ka];
+        const size_t rows = (size_t)(l->nk - 1) * l->nj + 1, capacity = sizeof pairs_cells / sizeof pairs_cells[0];
+        const size_t want = vfi_runs_encode(r->slices[ka], l, &r->cls, NULL, index_cells, pairs_cells, capacity);
+        const size_t got = vfi_runs_encode(r->slices[ka], l, &r->cls, &r->bricks, index_bricks, pairs_bricks, capacity);
+        CHECK_MSG(got == want && want <= capacity, "%s %u..%u axis %d: %zu values with bricks, %zu cell by cell", what,
+                  a, b, ka, got, want);
+        CHECK_MSG(memcmp(index_cells, index_bricks, rows * sizeof index_cells[0]) == 0 &&
+                      memcmp(pairs_cells, pairs_bricks, want * sizeof pairs_cells[0]) == 0,
+                  "%s %u..%u axis %d (dims %u %u %u): the run lists differ", what, a, b, ka, r->volume.dims[0],
+                  r->volume.dims[1], r->volume.dims[2]);
+        if (check_failed)
+            return;
+    }
+}
+
+/* Every transfer function that is visible on one interval of scalars [a, b] (opacity 0 outside, in steps or
+ * in ramps), for every a <= b on a grid of 32 scalars and their neighbours, in tables of 256, 17 and 1000 entries
+ * and both lookups: the bricks settle them all as reading every cell does. Then random transfer functions. */
+static void runs_bricks_match_cells(void)
+{
+    const uint32_t sizes[] = {256, 17, 1000};
+    const vf_lookup_t lookups[] = {VF_LOOKUP_NEAREST, VF_LOOKUP_BILINEAR};
+    for (int t = 0; t < 24 && !check_failed; t++) {
+        vf_volume_t vol = brick_volume();
+        vf_params_t params;
+        vf_params_default(&params);
+        params.mode = VF_MODE_POINT; /* the runs do not depend on the mode; keep the arena small */
+        params.table_size = sizes[t % 3];
+        params.lookup = lookups[(t / 3) % 2];
+        vf_arena_t arena;
+        vf_arena_init(&arena, arena_buf, sizeof arena_buf);
+        vf_renderer_t *r = NULL;
+        CHECK_EQ(vf_renderer_create(&r, &params, &vol, &arena), VF_OK);
+        CHECK_EQ(vf_renderer_set_window(r, (vf_window_t){0, 255}), VF_OK);
+        if (check_failed)
+            return;
+        for (uint32_t a = 0; a < 256 && !check_failed; a += (a % 32 == 0 ? 1 : a % 32 == 1 ? 30 : 1)) {
+            for (uint32_t b = a; b < 256 && !check_failed; b += (b % 32 == 0 ? 1 : b % 32 == 1 ? 30 : 1)) {
+                const uint16_t lo = (uint16_t)(a * 256), hi = (uint16_t)(b * 256), ramp = (uint16_t)(t % 2 ? 256 : 1);
+                vf_tf_point_t pts[4] = {{lo > ramp ? (uint16_t)(lo - ramp) : 0, 65535, 65535, 65535, 0},
+                                        {lo, 65535, 65535, 65535, 40000},
+                                        {hi, 65535, 65535, 65535, 40000},
+                                        {hi < 65280 - ramp ? (uint16_t)(hi + ramp) : 65280, 65535, 65535, 65535, 0}};
+                vf_tf_t tf = {pts, 4};
+                CHECK_EQ(vfi_classify(&r->cls, &tf), VF_OK);
+                compare_bricks(r, "interval", a, b);
+            }
+        }
+        for (int u = 0; u < 40 && !check_failed; u++) {
+            vf_tf_t tf = random_tf();
+            CHECK_EQ(vfi_classify(&r->cls, &tf), VF_OK);
+            compare_bricks(r, "random", (uint32_t)u, 0);
+        }
+    }
+}
+
+/* Bricks of the last window: a new window makes them again (the runs of the new slices are checked cell by cell). */
+static void runs_bricks_follow_window(void)
+{
+    for (int t = 0; t < 10 && !check_failed; t++) {
+        vf_volume_t vol = brick_volume();
+        vf_arena_t arena;
+        vf_renderer_t *r = make_renderer(&vol, 256, &arena);
+        CHECK(r != NULL);
+        vf_tf_t tf = random_tf();
+        CHECK_EQ(vf_renderer_set_tf(r, &tf), VF_OK);
+        const vf_window_t wins[] = {{0, 255}, {100, 140}, {255, 0}};
+        for (int w = 0; w < 3 && !check_failed; w++) {
+            CHECK_EQ(vf_renderer_set_window(r, wins[w]), VF_OK);
+            for (int ka = 0; ka < 3 && !check_failed; ka++)
+                check_runs(r, ka);
+            compare_bricks(r, "window", (uint32_t)w, 0);
+        }
+    }
+}
+
 CHECK_CASES(CHECK_CASE(window_all_values), CHECK_CASE(slice_copies), CHECK_CASE(window_rejects_empty),
-            CHECK_CASE(runs_random), CHECK_CASE(runs_all_or_nothing), CHECK_CASE(runs_count_matches_fill));
+            CHECK_CASE(runs_random), CHECK_CASE(runs_all_or_nothing), CHECK_CASE(runs_count_matches_fill),
+            CHECK_CASE(runs_bricks_match_cells), CHECK_CASE(runs_bricks_follow_window));
 CHECK_RUN("core/slices_runs")
