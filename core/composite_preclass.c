@@ -72,6 +72,23 @@ static VF_ALWAYS_INLINE uint64_t down(uint64_t x, uint64_t y, uint32_t fy, uint3
     return ((x * fy1 + y * fy + ROUND16) >> 16) & LANES;
 }
 
+/* Composite a sample (its alpha word wa, g | a << 32, and its colour word rb, r | b << 32, unused when grey)
+ * behind pixel u, front to back, and mark the pixel finished once it is opaque. */
+static VF_ALWAYS_INLINE void over(uint16_t *pixels, uint16_t *next, uint32_t u, uint64_t wa, uint64_t rb, bool grey)
+{
+    uint16_t *px = pixels + (size_t)u * 4;
+    const uint64_t before = load_pixel(px);
+    const uint32_t t = VFI_ONE_Q15 - (uint32_t)(before >> 48);
+    /* a lane's sum is below 2^31, so >> 15 leaves it in the low 16 bits of its lane; a channel's sum stays below
+     * 2^16 (at most 1.0 and a rounding), so the four adds do not carry into each other */
+    const uint64_t add_a = (wa * t + ROUND15) >> 15;
+    const uint64_t add = grey ? (add_a & 0xFFFFu) * UINT64_C(0x100010001) + ((add_a >> 32) << 48)
+                              : (((rb * t + ROUND15) >> 15) & LANES) | (add_a & LANES) << 16;
+    store_pixel(px, before + add);
+    if (px[3] >= VFI_OPAQUE_Q15)
+        next[u] = (uint16_t)(u + 1);
+}
+
 /* One row. grey: r = g = b in every entry, and the classes' word 0 is r | a << 32: one channel for three. */
 static VF_ALWAYS_INLINE void row_body(const row_job_t *job, run_merge_t *m, bool grey)
 {
@@ -91,22 +108,7 @@ static VF_ALWAYS_INLINE void row_body(const row_job_t *job, run_merge_t *m, bool
             const uint64_t wa = down(across(terms, p, alpha_word), across(terms, p + row, alpha_word), fy, fy1);
             if (!(wa >> 32))
                 continue; /* alpha 0, and so colour 0 (an entry's colour is at most its alpha): nothing to add */
-            uint16_t *px = pixels + (size_t)u * 4;
-            const uint64_t before = load_pixel(px);
-            const uint32_t t = VFI_ONE_Q15 - (uint32_t)(before >> 48);
-            /* a lane's sum is below 2^31, so >> 15 leaves it in the low 16 bits of its lane; a channel's sum stays
-             * below 2^16 (at most 1.0 and a rounding), so the four adds do not carry into each other */
-            const uint64_t add_a = (wa * t + ROUND15) >> 15;
-            uint64_t add;
-            if (grey) {
-                add = (add_a & 0xFFFFu) * UINT64_C(0x100010001) + ((add_a >> 32) << 48);
-            } else {
-                const uint64_t rb = down(across(terms, p, 0), across(terms, p + row, 0), fy, fy1);
-                add = (((rb * t + ROUND15) >> 15) & LANES) | (add_a & LANES) << 16;
-            }
-            store_pixel(px, before + add);
-            if (px[3] >= VFI_OPAQUE_Q15)
-                next[u] = (uint16_t)(u + 1);
+            over(pixels, next, u, wa, grey ? 0 : down(across(terms, p, 0), across(terms, p + row, 0), fy, fy1), grey);
         }
     }
 }
@@ -214,20 +216,7 @@ static VF_ALWAYS_INLINE void row_lit_body(const row_job_t *job, run_merge_t *m, 
             const uint64_t wa = lerp_words(top[w], bottom[w], fy);
             if (!(wa >> 32))
                 continue;
-            uint16_t *px = pixels + (size_t)u * 4;
-            const uint64_t before = load_pixel(px);
-            const uint32_t t = VFI_ONE_Q15 - (uint32_t)(before >> 48);
-            const uint64_t add_a = (wa * t + ROUND15) >> 15;
-            uint64_t add;
-            if (grey) {
-                add = (add_a & 0xFFFFu) * UINT64_C(0x100010001) + ((add_a >> 32) << 48);
-            } else {
-                const uint64_t rb = lerp_words(top[0], bottom[0], fy);
-                add = (((rb * t + ROUND15) >> 15) & LANES) | (add_a & LANES) << 16;
-            }
-            store_pixel(px, before + add);
-            if (px[3] >= VFI_OPAQUE_Q15)
-                next[u] = (uint16_t)(u + 1);
+            over(pixels, next, u, wa, grey ? 0 : lerp_words(top[0], bottom[0], fy), grey);
         }
     }
 }
