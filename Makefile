@@ -658,7 +658,7 @@ $(sort $(DEP_FILES)): ;
 # $(BUILD)/peers; then the same four scenes rendered by both, unlit and lit, timed and counted (10 to 15 minutes,
 # progress on stderr).
 .PHONY: bench-peers peers-deps peers-progs
-peers-progs: $(BUILD)/peers/volpack_peer $(BUILD)/peers/peer_compare
+peers-progs: $(BUILD)/peers/volpack_peer $(BUILD)/peers/peer_compare $(BUILD)/peers/storage_study
 peers-deps:
 	@sh tools/deps.sh peers
 
@@ -671,7 +671,12 @@ $(BUILD)/peers/peer_compare: tools/peers/peer_compare.c
 	@mkdir -p $(@D)
 	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -o $@ $< -lpng -lm
 
-bench-peers: $(BUILD)/volfix-sim $(BUILD)/peers/volpack_peer $(BUILD)/peers/peer_compare
+# storage_study: the bytes volfix's per-axis storage would take if it kept only the visible cells' voxels
+$(BUILD)/peers/storage_study: tools/peers/storage_study.c
+	@mkdir -p $(@D)
+	$(CC) -std=c11 -D_DEFAULT_SOURCE -O2 -g -Wall -Wextra -o $@ $< -lz
+
+bench-peers: $(BUILD)/volfix-sim $(BUILD)/peers/volpack_peer $(BUILD)/peers/peer_compare $(BUILD)/peers/storage_study
 	@BUILD=$(BUILD) VOLFIX_DATA=$(VOLFIX_DATA) sh tools/peers/run.sh
 
 # make volpack-check: VolPack's example image (without depth cueing) and volfix's lit preclass of the same

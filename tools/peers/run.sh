@@ -35,6 +35,7 @@ jobs=${JOBS:-2}
 sim=$build/volfix-sim
 peer=$build/peers/volpack_peer
 compare=$build/peers/peer_compare
+study=$build/peers/storage_study
 out=$build/peers
 
 for n in ROUNDS:$rounds FRAMES:$frames COUNT_ANGLE:$count_angle JOBS:$jobs; do
@@ -42,7 +43,7 @@ for n in ROUNDS:$rounds FRAMES:$frames COUNT_ANGLE:$count_angle JOBS:$jobs; do
         ''|*[!0-9]*|0) echo "bench-peers: ${n%%:*}=${n#*:}: expected a whole number above 0" >&2; exit 2 ;;
     esac
 done
-for f in "$sim" "$peer" "$compare"; do
+for f in "$sim" "$peer" "$compare" "$study"; do
     [ -x "$f" ] || { echo "bench-peers: $f: not built (run make bench-peers)" >&2; exit 2; }
 done
 for f in brainsmall.den brainsmall.nhdr engine.raw.gz engine.nhdr brainsmall.volpack-check.ppm; do
@@ -50,7 +51,7 @@ for f in brainsmall.den brainsmall.nhdr engine.raw.gz engine.nhdr brainsmall.vol
 done
 command -v valgrind >/dev/null || { echo "bench-peers: valgrind: not installed (tools/deps.sh peers)" >&2; exit 2; }
 mkdir -p "$out/count" || exit 2
-rm -f "$out"/count/* "$out/times.txt"
+rm -f "$out"/count/* "$out/times.txt" "$out/memory.txt"
 
 say() { echo "bench-peers: $*" >&2; }
 load_start=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)
@@ -195,6 +196,10 @@ for s in $scenes; do
             ms=$(echo "$json" | sed -n 's/.*"ms_per_frame": \([0-9.]*\).*/\1/p')
             [ -n "$ms" ] || { say "$s $r: no ms_per_frame in its output"; exit 1; }
             echo "$s $r $round $ms" >>"$out/times.txt"
+            if [ $round -eq 1 ]; then # what the renderer holds for the volume: VolPack's classified copies, volfix's arena
+                bytes=$(echo "$json" | sed -n 's/.*"\(classified_bytes\|memory_bytes\)": \([0-9]*\).*/\2/p')
+                echo "$s $r ${bytes:-0}" >>"$out/memory.txt"
+            fi
             i=$((i + 1))
         done
         say "frame times: $s, round $round of $rounds done ($(( $(date +%s) - started )) s so far)"
@@ -208,7 +213,7 @@ echo
 echo "Load average (1, 5, 15 min) at the start: $load_start; at the end: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)."
 echo
 echo "VolPack $(dpkg-query -W -f='${Version}' libvolpack1-dev 2>/dev/null) (Debian), vpRenderClassifiedVolume;" \
-     "volfix $(git rev-parse --short HEAD 2>/dev/null)$(git diff --quiet HEAD 2>/dev/null || echo '+changes')."
+     "$("$sim" --version 2>/dev/null | head -1)$(git diff --quiet HEAD 2>/dev/null || echo ', with uncommitted changes')."
 echo "512x512, parallel, one thread, early termination at 1 - 2^-10 in both. M instructions per frame: callgrind, one"
 echo "frame at A = $count_angle (volfix azimuth $az_peer) after a warm-up one step before. ms per frame: $frames frames," \
      "2 degrees apart, from A = 0 (volfix azimuth 0 up, VolPack A down); median of $rounds rounds' means."
@@ -282,6 +287,48 @@ END {
         printf "\n"
     }
 }' "$out/times.txt" || exit 1
+
+echo
+echo "Memory for the volume, MB (10^6 bytes): VolPack's classified volume (the heap vpClassifyVolume keeps: three"
+echo "run-length encoded copies of the voxels it does not find transparent, 4 bytes each here) against volfix's arena"
+echo "(vf_memory: its per-axis copies, normals, run lists, tables and intermediate image; one thread)."
+echo
+awk -v scenes="$scenes" '
+{ b[$1, $2] = $3 }
+END {
+    n = split("vp-phong vp-rgb vf-point vf-preint1 vf-preclass vf-point-lit vf-preint1-lit vf-preclass-lit", r, " ")
+    printf "| scene | VolPack Phong | VolPack RGB | volfix point | preint1 | preclass | point lit | preint1 lit | preclass lit | preint1 lit / VolPack Phong | preint1 / VolPack RGB |\n"
+    printf "|---|---|---|---|---|---|---|---|---|---|---|\n"
+    ns = split(scenes, sc, " ")
+    for (j = 1; j <= ns; j++) {
+        s = sc[j]; name = s; sub(/-/, " ", name); printf "| %s |", name
+        for (i = 1; i <= n; i++) printf " %.1f |", b[s, r[i]] / 1e6
+        printf " %.2f | %.2f |\n", b[s, "vf-preint1-lit"] / b[s, "vp-phong"], b[s, "vf-preint1"] / b[s, "vp-rgb"]
+    }
+}' "$out/memory.txt" || exit 1
+
+echo
+echo "What volfix's lit storage would take if it kept only what the transfer function leaves visible, MB: the voxel"
+echo "places a lit copy holds (1 byte of scalar, 2 of normal code, 1 of gradient magnitude: 4 bytes) summed over the"
+echo "three principal axes, counted by storage_study (the corners of the visible cells; a lower bound) for today's"
+echo "copies, the rows from a slice's first to last needed one, each row from its first to its last needed voxel"
+echo "(with a 4-byte offset a row), the needed voxels only (with their run lists), and one axis of the last."
+echo
+echo "| scene | VolPack Phong | volfix lit today | slice rows | row spans | exact | exact / VolPack | one axis exact / VolPack |"
+echo "|---|---|---|---|---|---|---|---|"
+for s in $scenes; do
+    scene "$s"
+    case $s in brainsmall-*) raw="$data/brainsmall.raw" ;; *) raw="$data/engine.raw.gz" ;; esac
+    case $tfname in ramp) t=0 ;; *) t=${tfname#sparse} ;; esac
+    j=$("$study" "$raw" --dims "$dims" --threshold "$t") || exit 1
+    vp=$(awk -v s="$s" '$1 == s && $2 == "vp-phong" { print $3 }' "$out/memory.txt")
+    echo "$j" | awk -v s="$s" -v vp="$vp" '
+    function f(k,    r) { r = $0; sub(".*\"" k "\": ", "", r); sub(/[,}].*/, "", r); return r + 0 }
+    { name = s; sub(/-/, " ", name)
+      ex = 4 * f("exact") + f("run_bytes")
+      printf "| %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f |\n", name, vp / 1e6, 4 * f("full") / 1e6,
+             4 * f("slice_rows") / 1e6, (4 * f("row_span") + f("row_offsets_bytes")) / 1e6, ex / 1e6, ex / vp, ex / 3 / vp }'
+done
 
 echo
 field() { echo "$1" | sed -n "s/.*\"$2\": \([^,}]*\).*/\1/p"; }
