@@ -361,7 +361,7 @@ static void print_one(const sim_scene_t *s, const variant_t *v, const plan_t *p,
     }
     printf("per frame%s: tables %.2f ms, compositing %.2f ms, warp %.2f ms\n",
            p->rounds == 1 ? "" : p->rounds % 2 ? " (median round)" : " (median rounds)", m.tables, m.composite, m.warp);
-    printf("memory: %.1f MB (slices %.1f, run lists %.1f, tables %.2f, intermediate image %.1f",
+    printf("memory: %.1f MiB (slices %.1f, run lists %.1f, tables %.2f, intermediate image %.1f",
            mem->total / 1048576.0, mem->slices / 1048576.0, mem->runs / 1048576.0, mem->tables / 1048576.0,
            mem->intermediate / 1048576.0);
     if (mem->normals) /* lit: normal codes and gradient magnitudes, a copy per principal axis like the slices */

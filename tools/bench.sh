@@ -103,9 +103,40 @@ if command -v valgrind >/dev/null; then
             fi
         done
     done
+    # the warp alone: callgrind's count of vfi_warp_band (inclusive, every band), the warm-up frame and one timed
+    # frame averaged; bench-peers puts it beside VolPack's (docs/peers.md)
+    echo
+    echo "== the warp's instructions per frame (callgrind, vfi_warp_band inclusive, 2 frames averaged)"
+    for v in $volumes; do
+        for mode in point preint1 preclass; do
+            out=$(mktemp)
+            valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=vfi_warp_band \
+                "$sim" bench "$v" --preset ramp --size "$size" --frames 1 --rounds 1 --mode "$mode" >/dev/null 2>&1
+            n=$(sed -n 's/^summary: \([0-9]*\).*/\1/p' "$out")
+            rm -f "$out"
+            if [ -n "$n" ]; then
+                printf '%-24s %-8s %s warp instructions per frame\n' "$(basename "$v")" "$mode" $((n / 2))
+            else
+                echo "$(basename "$v") $mode: callgrind gave no count" >&2
+            fi
+        done
+    done
 else
     echo "(valgrind not installed: no instruction counts)"
 fi
+
+# Memory: the renderer's arena (vf_renderer_memory) by mode, unlit and lit, for one thread; make bench-peers sets
+# it beside VolPack's classified volume.
+echo
+echo "== memory, $size, preset ramp, one thread: the arena in MiB (vf_renderer_memory)"
+for v in $volumes; do
+    for lit in "" "--shade phong"; do
+        for mode in point preint1 preclass; do
+            line=$("$sim" bench "$v" --preset ramp --size "$size" --frames 1 --rounds 1 --mode "$mode" $lit | grep '^memory:')
+            printf '%-24s %-8s %-5s %s\n' "$(basename "$v")" "$mode" "$([ -n "$lit" ] && echo lit || echo unlit)" "${line#memory: }"
+        done
+    done
+done
 
 # The viewer's input-to-frame latency: a scripted session on the headless board (240x240 RGB565 PNG frames)
 # while the level knob moves the transfer function every 40 ms (tests/viewer/level.script), with the
