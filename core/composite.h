@@ -352,10 +352,10 @@ static VF_ALWAYS_INLINE void vfi_segment_order0(const row_job_t *job, const uint
 }
 
 /* Pixel u (at px) blended with 16-bit table entry e, and closed in the skip links next once opaque: the plain
- * loops' step for a pixel. */
-static inline void vfi_blend_entry(uint16_t *px, uint16_t *next, uint32_t u, const uint16_t *e)
+ * loops' step for a pixel. grey: the table is grey (r = g = b in every entry), one product for the three colours. */
+static VF_ALWAYS_INLINE void vfi_blend_entry(uint16_t *px, uint16_t *next, uint32_t u, const uint16_t *e, bool grey)
 {
-    if (e[3] && vfi_blend_q15(px, e))
+    if (e[3] && (grey ? vfi_blend_grey(px, e[0], e[3]) : vfi_blend_q15(px, e)))
         next[u] = (uint16_t)(u + 1);
 }
 

@@ -20,7 +20,7 @@ static VF_ALWAYS_INLINE const uint16_t *point_entry(const uint16_t *table, const
  * (composite_order1.c), so that the branches on the entry do not wait for its load. The span's end is tested once
  * a pixel, before the look-up ahead (the last pixel's blend has a copy of its own). What each of these saves is in
  * docs/performance.md. */
-static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *m, bool n256)
+static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *m, bool n256, bool grey)
 {
     const slice_place_t *sl = job->front;
     const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fy = job->front_fy, n = job->lookup.n;
@@ -35,7 +35,7 @@ static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *
         if (!VF_LOOK_AHEAD) {
             for (; u < (uint32_t)b; u = vfi_next_open(next, u + 1))
                 vfi_blend_entry(pixels + (size_t)u * 4, next, u,
-                                point_entry(table, data + (u - cu), row, fx, fy, n, n256));
+                                point_entry(table, data + (u - cu), row, fx, fy, n, n256), grey);
             continue;
         }
         if (u >= (uint32_t)b)
@@ -44,11 +44,11 @@ static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *
         for (;;) {
             const uint32_t u_next = vfi_next_open(next, u + 1); /* a blend closes only the pixel it blends */
             if (u_next >= (uint32_t)b) {
-                vfi_blend_entry(pixels + (size_t)u * 4, next, u, e);
+                vfi_blend_entry(pixels + (size_t)u * 4, next, u, e, grey);
                 break;
             }
             const uint16_t *e_next = point_entry(table, data + (u_next - cu), row, fx, fy, n, n256);
-            vfi_blend_entry(pixels + (size_t)u * 4, next, u, e);
+            vfi_blend_entry(pixels + (size_t)u * 4, next, u, e, grey);
             u = u_next, e = e_next;
         }
     }
@@ -56,13 +56,19 @@ static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *
 
 static VF_NOINLINE void row_point_256(const row_job_t *job, run_merge_t *m)
 {
-    row_point_plain(job, m, true);
+    row_point_plain(job, m, true, false);
 }
 
 #if VF_SPECIAL_LOOPS
+/* A grey transfer function's table (r = g = b in every entry): one colour product a pixel for three */
+static VF_NOINLINE void row_point_256_grey(const row_job_t *job, run_merge_t *m)
+{
+    row_point_plain(job, m, true, true);
+}
+
 static VF_NOINLINE void row_point_n(const row_job_t *job, run_merge_t *m)
 {
-    row_point_plain(job, m, false);
+    row_point_plain(job, m, false, false);
 }
 #endif
 
@@ -158,6 +164,11 @@ void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
         return;
     }
 #endif
+#endif
+#if VF_SPECIAL_LOOPS
+    if (job->plain && !preclass && job->lookup.n == 256 && job->grey)
+        row_point_256_grey(job, m);
+    else
 #endif
     if (job->plain && !preclass && job->lookup.n == 256)
         row_point_256(job, m);

@@ -76,12 +76,14 @@ static VF_ALWAYS_INLINE const uint16_t *plain_entry(const plain_loop_t *l, const
     return l->table + ((size_t)row_f + pos_b) * 4;
 }
 
-/* Pixel u composited with entry e; in a table built as read, e's diagonal is built first if it is unbuilt. */
-static VF_ALWAYS_INLINE void plain_blend(const plain_loop_t *l, const plain_row_t *pr, uint32_t u, const uint16_t *e)
+/* Pixel u composited with entry e; in a table built as read, e's diagonal is built first if it is unbuilt. grey:
+ * the table is grey (vfi_blend_entry). */
+static VF_ALWAYS_INLINE void plain_blend(const plain_loop_t *l, const plain_row_t *pr, uint32_t u, const uint16_t *e,
+                                         bool grey)
 {
     if (VF_TABLE_ON_DEMAND && !e[3] && e[0] == VFI_UNBUILT_Q15) /* only ever in a table built as read */
         build_entry(pr->demand, l->table, l->n, e);
-    vfi_blend_entry(l->pixels + (size_t)u * 4, l->next, u, e);
+    vfi_blend_entry(l->pixels + (size_t)u * 4, l->next, u, e, grey);
 }
 
 /* The default path (nearest lookup, 16-bit table, no lut, full precision), where preint1 frames spend their time:
@@ -92,14 +94,15 @@ static VF_ALWAYS_INLINE void plain_blend(const plain_loop_t *l, const plain_row_
  * read an unbuilt entry's diagonal is built where the loop meets it: with the image-sized buffer the look-ahead has
  * stored the next pixel's back position over its front one, so the loop may not leave there and come back.
  * Returns the first open pixel at or after y. */
-static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256)
+static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256,
+                                            bool grey)
 {
     plain_loop_t l = pr->loop;
     if (n256)
         l.n = 256;
     if (!VF_LOOK_AHEAD) {
         for (; u < y; u = vfi_next_open(l.next, u + 1))
-            plain_blend(&l, pr, u, plain_entry(&l, pr, u, buffered, n256));
+            plain_blend(&l, pr, u, plain_entry(&l, pr, u, buffered, n256), grey);
         return u;
     }
     if (u >= y)
@@ -108,11 +111,11 @@ static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, u
     for (;;) {
         const uint32_t u_next = vfi_next_open(l.next, u + 1); /* a blend closes only the pixel it blends */
         if (u_next >= y) { /* the span's last: one test a pixel, where the look-up ahead and the exit each had one */
-            plain_blend(&l, pr, u, e);
+            plain_blend(&l, pr, u, e, grey);
             return u_next;
         }
         const uint16_t *e_next = plain_entry(&l, pr, u_next, buffered, n256);
-        plain_blend(&l, pr, u, e);
+        plain_blend(&l, pr, u, e, grey);
         u = u_next, e = e_next;
     }
 }
@@ -166,7 +169,7 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
         const uint32_t r = vfi_lit_channel(e[0], d[0], a, specular, f, b);
         const uint32_t g = grey ? r : vfi_lit_channel(e[1], d[1], a, specular, f, b);
         const uint32_t bl = grey ? r : vfi_lit_channel(e[2], d[2], a, specular, f, b);
-        if (vfi_blend_rgba(l.pixels + (size_t)u * 4, r, g, bl, a))
+        if (grey ? vfi_blend_grey(l.pixels + (size_t)u * 4, r, a) : vfi_blend_rgba(l.pixels + (size_t)u * 4, r, g, bl, a))
             l.next[u] = (uint16_t)(u + 1);
     }
     return u;
@@ -236,7 +239,7 @@ static uint32_t span_general(const row_job_t *job, uint32_t u, uint32_t y, bool 
 /* A row's walked runs (vfi_merge_runs), each cut into spans whose fronts are all buffered or all sampled here. The
  * plain path takes its arrays from pr, the general one from job. */
 static VF_ALWAYS_INLINE void row(const row_job_t *job, const plain_row_t *pr, const vfi_span_t *walked, uint32_t count,
-                                 const row_visits_t *last_row, bool plain, bool n256, bool lit)
+                                 const row_visits_t *last_row, bool plain, bool n256, bool lit, bool grey)
 {
     const vfi_span_t *last = last_row ? last_row->span : NULL;
     const uint32_t last_count = last_row ? last_row->count : 0;
@@ -256,7 +259,7 @@ static VF_ALWAYS_INLINE void row(const row_job_t *job, const plain_row_t *pr, co
             if (VF_LIGHTING && lit)
                 u = span_lit(pr, u, y, buffered, n256);
             else
-                u = buffered ? span_plain(pr, u, y, true, n256) : span_plain(pr, u, y, false, n256);
+                u = buffered ? span_plain(pr, u, y, true, n256, grey) : span_plain(pr, u, y, false, n256, grey);
         }
     }
 }
@@ -271,7 +274,8 @@ static inline const row_visits_t *last_visits(const vfi_slab_rows_t *s, uint32_t
  * same fraction, so row v_lo + k's slice rows, runs and arrays are k rows, cell rows and strides after row v_lo's,
  * and what its loops read is set up once (pr). The general path sets job's row fields for each row (with more rays
  * the fraction and slice row are the row's own). */
-static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s, bool plain, bool n256, bool lit)
+static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s, bool plain, bool n256, bool lit,
+                                      bool grey)
 {
     const slice_place_t *front = job->front, *back = job->back;
     const int32_t lo = MAX(front->u_lo, back->u_lo), hi = MIN(front->u_hi, back->u_hi);
@@ -337,7 +341,7 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
         vfi_merge_init(&m, plain ? 16 : job->step_shift, pairs + runs_f[0], pairs + runs_f[1], front,
                        pairs + runs_b[0], pairs + runs_b[1], back);
         now->count = vfi_merge_runs(&m, lo, hi, now->span);
-        row(job, &pr, now->span, now->count, last, plain, n256, lit);
+        row(job, &pr, now->span, now->count, last, plain, n256, lit, grey);
     }
 }
 
@@ -345,9 +349,17 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
 static VF_NOINLINE void slab_rows_lit(row_job_t *job, const vfi_slab_rows_t *s)
 {
     if (job->lookup.n == 256)
-        slab_rows(job, s, true, true, true);
+        slab_rows(job, s, true, true, true, false);
     else
-        slab_rows(job, s, true, false, true);
+        slab_rows(job, s, true, false, true, false);
+}
+#endif
+
+#if VF_SPECIAL_LOOPS
+/* A grey transfer function's table (r = g = b in every entry): one colour product a pixel for three */
+static VF_NOINLINE void slab_rows_grey(row_job_t *job, const vfi_slab_rows_t *s)
+{
+    slab_rows(job, s, true, true, false, true);
 }
 #endif
 
@@ -359,10 +371,16 @@ void vfi_slab_preint1(row_job_t *job, const vfi_slab_rows_t *s)
         return;
     }
 #endif
+#if VF_SPECIAL_LOOPS
+    if (job->plain && job->lookup.n == 256 && job->grey) {
+        slab_rows_grey(job, s);
+        return;
+    }
+#endif
     if (!job->plain)
-        slab_rows(job, s, false, false, false);
+        slab_rows(job, s, false, false, false, false);
     else if (job->lookup.n == 256)
-        slab_rows(job, s, true, true, false);
+        slab_rows(job, s, true, true, false, false);
     else
-        slab_rows(job, s, true, false, false);
+        slab_rows(job, s, true, false, false, false);
 }
