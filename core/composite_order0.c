@@ -15,17 +15,19 @@ static VF_ALWAYS_INLINE const uint16_t *point_entry(const uint16_t *table, const
 }
 
 /* point with a 16-bit table and one ray per voxel column: the loop on its own, everything it reads in locals (the
- * table's size too: the stores to the pixels might change cls->n as far as the compiler knows).
+ * table's size too: the stores to the pixels might change cls->n as far as the compiler knows). The samples by
+ * columns (vfi_row_sampler_t), a run's next pixel reusing the last one's right column.
  * With VF_LOOK_AHEAD each pixel's entry is looked up one open pixel ahead of its blend, as preint1's loop does
  * (composite_order1.c), so that the branches on the entry do not wait for its load. The span's end is tested once
  * a pixel, before the look-up ahead (the last pixel's blend has a copy of its own). What each of these saves is in
- * docs/performance.md. */
+ * docs/performance.md. grey: the table is grey (vfi_blend_entry). */
 static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *m, bool n256, bool grey)
 {
     const slice_place_t *sl = job->front;
-    const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fy = job->front_fy, n = job->lookup.n;
+    const uint32_t n = job->lookup.n;
     const uint16_t *table = job->lookup.q15;
-    const uint8_t *data = job->row_data;
+    vfi_row_sampler_t smp; /* by pixel: the slice rows from column -cu */
+    vfi_sampler_init(&smp, job->row_data - sl->cu, job->row, sl->fx, job->front_fy, n256);
     uint16_t *next = job->next, *pixels = job->pixels;
     int32_t a, b;
     while (vfi_merge_next(m, &a, &b)) {
@@ -34,20 +36,20 @@ static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *
         uint32_t u = a < b ? vfi_next_open(next, (uint32_t)a) : (uint32_t)b;
         if (!VF_LOOK_AHEAD) {
             for (; u < (uint32_t)b; u = vfi_next_open(next, u + 1))
-                vfi_blend_entry(pixels + (size_t)u * 4, next, u,
-                                point_entry(table, data + (u - cu), row, fx, fy, n, n256), grey);
+                vfi_blend_entry(pixels + (size_t)u * 4, next, u, table + (size_t)vfi_sampler_entry(&smp, u, n, n256) * 4,
+                                grey);
             continue;
         }
         if (u >= (uint32_t)b)
             continue;
-        const uint16_t *e = point_entry(table, data + (u - cu), row, fx, fy, n, n256);
+        const uint16_t *e = table + (size_t)vfi_sampler_entry(&smp, u, n, n256) * 4;
         for (;;) {
             const uint32_t u_next = vfi_next_open(next, u + 1); /* a blend closes only the pixel it blends */
             if (u_next >= (uint32_t)b) {
                 vfi_blend_entry(pixels + (size_t)u * 4, next, u, e, grey);
                 break;
             }
-            const uint16_t *e_next = point_entry(table, data + (u_next - cu), row, fx, fy, n, n256);
+            const uint16_t *e_next = table + (size_t)vfi_sampler_entry(&smp, u_next, n, n256) * 4;
             vfi_blend_entry(pixels + (size_t)u * 4, next, u, e, grey);
             u = u_next, e = e_next;
         }

@@ -59,8 +59,8 @@ static VF_NOINLINE void build_entry(const vfi_demand_t *demand, const uint16_t *
  * sampled and stored for the next slab. A 256-entry table's rounding is folded into the lerps (vfi_entry_rows) only
  * with VF_SPECIAL_LOOPS: it saves two instructions a sample on x86-64 but costs the Cortex-M4 at -Os more than it
  * saves (docs/performance.md), and the MCU build leaves the special loops out. */
-static VF_ALWAYS_INLINE const uint16_t *plain_entry(const plain_loop_t *l, const plain_row_t *pr, uint32_t u,
-                                                    bool buffered, bool n256)
+static VF_ALWAYS_INLINE const uint16_t *plain_entry(const plain_loop_t *l, const plain_row_t *pr,
+                                                    vfi_row_sampler_t *back, uint32_t u, bool buffered, bool n256)
 {
     const uint32_t c = u - l->cu, n = l->n;
     const bool fold = VF_SPECIAL_LOOPS && n256;
@@ -71,7 +71,8 @@ static VF_ALWAYS_INLINE const uint16_t *plain_entry(const plain_loop_t *l, const
         const uint8_t *p = pr->front + (u - pr->front_cu);
         row_f = n * vfi_entry_rows(p, p + pr->row, pr->front_fx, pr->front_fy, n, fold);
     }
-    const uint32_t pos_b = vfi_entry_rows(l->top + c, l->bottom + c, l->fx, l->fy, n, fold);
+    const uint32_t pos_b = back ? vfi_sampler_entry(back, u, n, fold)
+                                : vfi_entry_rows(l->top + c, l->bottom + c, l->fx, l->fy, n, fold);
     l->back_buf[c] = pos_b * n;
     return l->table + ((size_t)row_f + pos_b) * 4;
 }
@@ -100,21 +101,23 @@ static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, u
     plain_loop_t l = pr->loop;
     if (n256)
         l.n = 256;
+    vfi_row_sampler_t back; /* the back samples by pixel: the slice rows from column -cu */
+    vfi_sampler_init(&back, l.top - l.cu, pr->row, l.fx, l.fy, VF_SPECIAL_LOOPS && n256);
     if (!VF_LOOK_AHEAD) {
         for (; u < y; u = vfi_next_open(l.next, u + 1))
-            plain_blend(&l, pr, u, plain_entry(&l, pr, u, buffered, n256), grey);
+            plain_blend(&l, pr, u, plain_entry(&l, pr, &back, u, buffered, n256), grey);
         return u;
     }
     if (u >= y)
         return u;
-    const uint16_t *e = plain_entry(&l, pr, u, buffered, n256);
+    const uint16_t *e = plain_entry(&l, pr, &back, u, buffered, n256);
     for (;;) {
         const uint32_t u_next = vfi_next_open(l.next, u + 1); /* a blend closes only the pixel it blends */
         if (u_next >= y) { /* the span's last: one test a pixel, where the look-up ahead and the exit each had one */
             plain_blend(&l, pr, u, e, grey);
             return u_next;
         }
-        const uint16_t *e_next = plain_entry(&l, pr, u_next, buffered, n256);
+        const uint16_t *e_next = plain_entry(&l, pr, &back, u_next, buffered, n256);
         plain_blend(&l, pr, u, e, grey);
         u = u_next, e = e_next;
     }
@@ -141,7 +144,7 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
         const uint32_t c = u - l.cu;
         /* the front shade read before the back one is stored: an image-sized buffer holds both in one place */
         uint32_t front = buffered ? l.front_buf[c + off] : 0, back;
-        const uint16_t *e = plain_entry(&l, pr, u, buffered, n256);
+        const uint16_t *e = plain_entry(&l, pr, NULL, u, buffered, n256);
         if (VF_TABLE_ON_DEMAND && !e[3] && e[0] == VFI_UNBUILT_Q15) /* its block, the lit values with it */
             build_entry(pr->demand, l.table, l.n, e);
         if (nearest) {
