@@ -137,18 +137,22 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
         l.n = 256;
     const vfi_shading_t *sh = pr->shading;
     const uint64_t *shade = sh->shade;
-    const size_t off = pr->shade_offset, back_at = (size_t)(l.top - sh->slices);
+    /* the rows, buffers and codes by pixel rather than by the back slice's column (from column -cu): one register
+     * fewer in a loop short of them */
+    const size_t off = pr->shade_offset, back_at = (size_t)(l.top - sh->slices) - l.cu;
+    const uint16_t *back_codes = pr->back_codes - l.cu, *lit = pr->lit;
+    l.top -= l.cu, l.bottom -= l.cu, l.front_buf -= l.cu, l.back_buf -= l.cu, l.cu = 0;
     uint64_t right = 0;          /* bilinear: the last pixel's right column, the left one of the pixel after it */
     uint32_t last_c = UINT32_MAX - 1;
     for (; u < y; u = vfi_next_open(l.next, u + 1)) {
-        const uint32_t c = u - l.cu;
+        const uint32_t c = u;
         /* the front shade read before the back one is stored: an image-sized buffer holds both in one place */
         uint32_t front = buffered ? l.front_buf[c + off] : 0, back;
         const uint16_t *e = plain_entry(&l, pr, NULL, u, buffered, n256);
         if (VF_TABLE_ON_DEMAND && !e[3] && e[0] == VFI_UNBUILT_Q15) /* its block, the lit values with it */
             build_entry(pr->demand, l.table, l.n, e);
         if (nearest) {
-            back = vfi_shade_pack(shade[pr->back_codes[c]]);
+            back = vfi_shade_pack(shade[back_codes[c]]);
         } else {
             const uint64_t left = c == last_c + 1 ? right : vfi_shade_column(sh, back_at + c, pr->row, l.fy);
             right = vfi_shade_column(sh, back_at + c + 1, pr->row, l.fy);
@@ -167,7 +171,7 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
             front = f.d | f.s << 16;
         }
         const vfi_shade_t f = {front & 0xFFFFu, front >> 16, 32768u}, b = {back & 0xFFFFu, back >> 16, 32768u};
-        const uint16_t *d = pr->lit + (e - l.table);
+        const uint16_t *d = lit + (e - l.table);
         const uint32_t specular = vfi_lit_specular(a, d[3], f, b);
         const uint32_t r = vfi_lit_channel(e[0], d[0], a, specular, f, b);
         const uint32_t g = grey ? r : vfi_lit_channel(e[1], d[1], a, specular, f, b);
