@@ -183,8 +183,21 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
 }
 
 /* span_plain_lit for the frame's shade lookup and colours: out of line, so that a row does not pay for its registers */
+#if VF_SPECIAL_LOOPS
+/* The default lit frame of a grey transfer function (nearest shades, a 256-entry table) with the table's size a
+ * constant: span_lit's other variants take it as it comes, a test and the general rounding a pixel */
+static VF_NOINLINE uint32_t span_lit_grey256(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered)
+{
+    return buffered ? span_plain_lit(pr, u, y, true, true, true, true) : span_plain_lit(pr, u, y, false, true, true, true);
+}
+#endif
+
 static VF_NOINLINE uint32_t span_lit(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256)
 {
+#if VF_SPECIAL_LOOPS
+    if (n256 && pr->nearest_shade && pr->grey)
+        return span_lit_grey256(pr, u, y, buffered);
+#endif
     if (pr->nearest_shade && pr->grey)
         return buffered ? span_plain_lit(pr, u, y, true, n256, true, true) : span_plain_lit(pr, u, y, false, n256, true, true);
     if (pr->nearest_shade)
