@@ -36,8 +36,8 @@ static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *
         uint32_t u = a < b ? vfi_next_open(next, (uint32_t)a) : (uint32_t)b;
         if (!VF_LOOK_AHEAD) {
             for (; u < (uint32_t)b; u = vfi_next_open(next, u + 1))
-                vfi_blend_entry(pixels + (size_t)u * 4, next, u, table + (size_t)vfi_sampler_entry(&smp, u, n, n256) * 4,
-                                grey);
+                vfi_blend_entry(pixels + (size_t)u * 4, next, u,
+                                table + (size_t)vfi_sampler_entry(&smp, u, n, n256) * 4, grey);
             continue;
         }
         if (u >= (uint32_t)b)
@@ -76,8 +76,11 @@ static VF_NOINLINE void row_point_n(const row_job_t *job, run_merge_t *m)
 
 #if VF_LIGHTING
 /* A lit point frame's plain loop (docs/algorithm.md, section 7): each visible entry lit with its sample's shade;
- * nearest: the nearest voxel's, read through a code row with the slice's rounding folded in. */
-static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_t *m, bool n256, bool nearest)
+ * nearest: the nearest voxel's, read through a code row with the slice's rounding folded in. grey: the table is
+ * grey, one colour lit and blended for three (vfi_light_point's and vfi_blend's sums, the plain lit path having no
+ * gradient factor). */
+static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_t *m, bool n256, bool nearest,
+                                                bool grey)
 {
     const slice_place_t *sl = job->front;
     const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fy = job->front_fy, n = job->lookup.n;
@@ -104,6 +107,13 @@ static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_
             } else {
                 shade = vfi_sample_shade(sh, p, row, fx, fy);
             }
+            if (grey) {
+                const uint32_t alpha = e[3], c = (shade.d * e[0] + shade.s * alpha + 0x2000u) >> 14;
+                const uint32_t colour = c < alpha ? c : alpha, over = alpha > VFI_ONE_Q15 ? VFI_ONE_Q15 : alpha;
+                if (vfi_blend_grey(pixels + (size_t)u * 4, colour, over))
+                    next[u] = (uint16_t)(u + 1);
+                continue;
+            }
             vfi_light_point(seg, shade);
             if (vfi_blend(pixels + (size_t)u * 4, seg))
                 next[u] = (uint16_t)(u + 1);
@@ -111,13 +121,26 @@ static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_
     }
 }
 
+#if VF_SPECIAL_LOOPS
+static VF_NOINLINE void row_point_lit_grey(const row_job_t *job, run_merge_t *m)
+{
+    row_point_lit_body(job, m, true, true, true);
+}
+#endif
+
 static VF_NOINLINE void row_point_lit(const row_job_t *job, run_merge_t *m)
 {
     const bool n256 = job->lookup.n == 256;
+#if VF_SPECIAL_LOOPS
+    if (n256 && !job->shading->bilinear && job->grey) { /* the default lit frame of a grey transfer function */
+        row_point_lit_grey(job, m);
+        return;
+    }
+#endif
     if (!job->shading->bilinear)
-        n256 ? row_point_lit_body(job, m, true, true) : row_point_lit_body(job, m, false, true);
+        n256 ? row_point_lit_body(job, m, true, true, false) : row_point_lit_body(job, m, false, true, false);
     else
-        n256 ? row_point_lit_body(job, m, true, false) : row_point_lit_body(job, m, false, false);
+        n256 ? row_point_lit_body(job, m, true, false, false) : row_point_lit_body(job, m, false, false, false);
 }
 #endif
 

@@ -176,7 +176,8 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
         const uint32_t r = vfi_lit_channel(e[0], d[0], a, specular, f, b);
         const uint32_t g = grey ? r : vfi_lit_channel(e[1], d[1], a, specular, f, b);
         const uint32_t bl = grey ? r : vfi_lit_channel(e[2], d[2], a, specular, f, b);
-        if (grey ? vfi_blend_grey(l.pixels + (size_t)u * 4, r, a) : vfi_blend_rgba(l.pixels + (size_t)u * 4, r, g, bl, a))
+        uint16_t *px = l.pixels + (size_t)u * 4;
+        if (grey ? vfi_blend_grey(px, r, a) : vfi_blend_rgba(px, r, g, bl, a))
             l.next[u] = (uint16_t)(u + 1);
     }
     return u;
@@ -188,7 +189,8 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
  * constant: span_lit's other variants take it as it comes, a test and the general rounding a pixel */
 static VF_NOINLINE uint32_t span_lit_grey256(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered)
 {
-    return buffered ? span_plain_lit(pr, u, y, true, true, true, true) : span_plain_lit(pr, u, y, false, true, true, true);
+    return buffered ? span_plain_lit(pr, u, y, true, true, true, true)
+                    : span_plain_lit(pr, u, y, false, true, true, true);
 }
 #endif
 
