@@ -15,17 +15,19 @@ static VF_ALWAYS_INLINE const uint16_t *point_entry(const uint16_t *table, const
 }
 
 /* point with a 16-bit table and one ray per voxel column: the loop on its own, everything it reads in locals (the
- * table's size too: the stores to the pixels might change cls->n as far as the compiler knows).
+ * table's size too: the stores to the pixels might change cls->n as far as the compiler knows). The samples by
+ * columns (vfi_row_sampler_t), a run's next pixel reusing the last one's right column.
  * With VF_LOOK_AHEAD each pixel's entry is looked up one open pixel ahead of its blend, as preint1's loop does
  * (composite_order1.c), so that the branches on the entry do not wait for its load. The span's end is tested once
  * a pixel, before the look-up ahead (the last pixel's blend has a copy of its own). What each of these saves is in
- * docs/performance.md. */
-static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *m, bool n256)
+ * docs/performance.md. grey: the table is grey (vfi_blend_entry). */
+static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *m, bool n256, bool grey)
 {
     const slice_place_t *sl = job->front;
-    const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fy = job->front_fy, n = job->lookup.n;
+    const uint32_t n = job->lookup.n;
     const uint16_t *table = job->lookup.q15;
-    const uint8_t *data = job->row_data;
+    vfi_row_sampler_t smp; /* by pixel: the slice rows from column -cu */
+    vfi_sampler_init(&smp, job->row_data - sl->cu, job->row, sl->fx, job->front_fy, n256);
     uint16_t *next = job->next, *pixels = job->pixels;
     int32_t a, b;
     while (vfi_merge_next(m, &a, &b)) {
@@ -35,20 +37,20 @@ static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *
         if (!VF_LOOK_AHEAD) {
             for (; u < (uint32_t)b; u = vfi_next_open(next, u + 1))
                 vfi_blend_entry(pixels + (size_t)u * 4, next, u,
-                                point_entry(table, data + (u - cu), row, fx, fy, n, n256));
+                                table + (size_t)vfi_sampler_entry(&smp, u, n, n256) * 4, grey);
             continue;
         }
         if (u >= (uint32_t)b)
             continue;
-        const uint16_t *e = point_entry(table, data + (u - cu), row, fx, fy, n, n256);
+        const uint16_t *e = table + (size_t)vfi_sampler_entry(&smp, u, n, n256) * 4;
         for (;;) {
             const uint32_t u_next = vfi_next_open(next, u + 1); /* a blend closes only the pixel it blends */
             if (u_next >= (uint32_t)b) {
-                vfi_blend_entry(pixels + (size_t)u * 4, next, u, e);
+                vfi_blend_entry(pixels + (size_t)u * 4, next, u, e, grey);
                 break;
             }
-            const uint16_t *e_next = point_entry(table, data + (u_next - cu), row, fx, fy, n, n256);
-            vfi_blend_entry(pixels + (size_t)u * 4, next, u, e);
+            const uint16_t *e_next = table + (size_t)vfi_sampler_entry(&smp, u_next, n, n256) * 4;
+            vfi_blend_entry(pixels + (size_t)u * 4, next, u, e, grey);
             u = u_next, e = e_next;
         }
     }
@@ -56,20 +58,29 @@ static VF_ALWAYS_INLINE void row_point_plain(const row_job_t *job, run_merge_t *
 
 static VF_NOINLINE void row_point_256(const row_job_t *job, run_merge_t *m)
 {
-    row_point_plain(job, m, true);
+    row_point_plain(job, m, true, false);
 }
 
 #if VF_SPECIAL_LOOPS
+/* A grey transfer function's table (r = g = b in every entry): one colour product a pixel for three */
+static VF_NOINLINE void row_point_256_grey(const row_job_t *job, run_merge_t *m)
+{
+    row_point_plain(job, m, true, true);
+}
+
 static VF_NOINLINE void row_point_n(const row_job_t *job, run_merge_t *m)
 {
-    row_point_plain(job, m, false);
+    row_point_plain(job, m, false, false);
 }
 #endif
 
 #if VF_LIGHTING
 /* A lit point frame's plain loop (docs/algorithm.md, section 7): each visible entry lit with its sample's shade;
- * nearest: the nearest voxel's, read through a code row with the slice's rounding folded in. */
-static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_t *m, bool n256, bool nearest)
+ * nearest: the nearest voxel's, read through a code row with the slice's rounding folded in. grey: the table is
+ * grey, one colour lit and blended for three (vfi_light_point's and vfi_blend's sums, the plain lit path having no
+ * gradient factor). */
+static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_t *m, bool n256, bool nearest,
+                                                bool grey)
 {
     const slice_place_t *sl = job->front;
     const uint32_t row = job->row, cu = (uint32_t)sl->cu, fx = sl->fx, fy = job->front_fy, n = job->lookup.n;
@@ -96,6 +107,13 @@ static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_
             } else {
                 shade = vfi_sample_shade(sh, p, row, fx, fy);
             }
+            if (grey) {
+                const uint32_t alpha = e[3], c = (shade.d * e[0] + shade.s * alpha + 0x2000u) >> 14;
+                const uint32_t colour = c < alpha ? c : alpha, over = alpha > VFI_ONE_Q15 ? VFI_ONE_Q15 : alpha;
+                if (vfi_blend_grey(pixels + (size_t)u * 4, colour, over))
+                    next[u] = (uint16_t)(u + 1);
+                continue;
+            }
             vfi_light_point(seg, shade);
             if (vfi_blend(pixels + (size_t)u * 4, seg))
                 next[u] = (uint16_t)(u + 1);
@@ -103,13 +121,26 @@ static VF_ALWAYS_INLINE void row_point_lit_body(const row_job_t *job, run_merge_
     }
 }
 
+#if VF_SPECIAL_LOOPS
+static VF_NOINLINE void row_point_lit_grey(const row_job_t *job, run_merge_t *m)
+{
+    row_point_lit_body(job, m, true, true, true);
+}
+#endif
+
 static VF_NOINLINE void row_point_lit(const row_job_t *job, run_merge_t *m)
 {
     const bool n256 = job->lookup.n == 256;
+#if VF_SPECIAL_LOOPS
+    if (n256 && !job->shading->bilinear && job->grey) { /* the default lit frame of a grey transfer function */
+        row_point_lit_grey(job, m);
+        return;
+    }
+#endif
     if (!job->shading->bilinear)
-        n256 ? row_point_lit_body(job, m, true, true) : row_point_lit_body(job, m, false, true);
+        n256 ? row_point_lit_body(job, m, true, true, false) : row_point_lit_body(job, m, false, true, false);
     else
-        n256 ? row_point_lit_body(job, m, true, false) : row_point_lit_body(job, m, false, false);
+        n256 ? row_point_lit_body(job, m, true, false, false) : row_point_lit_body(job, m, false, false, false);
 }
 #endif
 
@@ -158,6 +189,11 @@ void vfi_row_order0(const row_job_t *job, run_merge_t *m, bool preclass)
         return;
     }
 #endif
+#endif
+#if VF_SPECIAL_LOOPS
+    if (job->plain && !preclass && job->lookup.n == 256 && job->grey)
+        row_point_256_grey(job, m);
+    else
 #endif
     if (job->plain && !preclass && job->lookup.n == 256)
         row_point_256(job, m);

@@ -59,8 +59,8 @@ static VF_NOINLINE void build_entry(const vfi_demand_t *demand, const uint16_t *
  * sampled and stored for the next slab. A 256-entry table's rounding is folded into the lerps (vfi_entry_rows) only
  * with VF_SPECIAL_LOOPS: it saves two instructions a sample on x86-64 but costs the Cortex-M4 at -Os more than it
  * saves (docs/performance.md), and the MCU build leaves the special loops out. */
-static VF_ALWAYS_INLINE const uint16_t *plain_entry(const plain_loop_t *l, const plain_row_t *pr, uint32_t u,
-                                                    bool buffered, bool n256)
+static VF_ALWAYS_INLINE const uint16_t *plain_entry(const plain_loop_t *l, const plain_row_t *pr,
+                                                    vfi_row_sampler_t *back, uint32_t u, bool buffered, bool n256)
 {
     const uint32_t c = u - l->cu, n = l->n;
     const bool fold = VF_SPECIAL_LOOPS && n256;
@@ -71,17 +71,20 @@ static VF_ALWAYS_INLINE const uint16_t *plain_entry(const plain_loop_t *l, const
         const uint8_t *p = pr->front + (u - pr->front_cu);
         row_f = n * vfi_entry_rows(p, p + pr->row, pr->front_fx, pr->front_fy, n, fold);
     }
-    const uint32_t pos_b = vfi_entry_rows(l->top + c, l->bottom + c, l->fx, l->fy, n, fold);
+    const uint32_t pos_b = back ? vfi_sampler_entry(back, u, n, fold)
+                                : vfi_entry_rows(l->top + c, l->bottom + c, l->fx, l->fy, n, fold);
     l->back_buf[c] = pos_b * n;
     return l->table + ((size_t)row_f + pos_b) * 4;
 }
 
-/* Pixel u composited with entry e; in a table built as read, e's diagonal is built first if it is unbuilt. */
-static VF_ALWAYS_INLINE void plain_blend(const plain_loop_t *l, const plain_row_t *pr, uint32_t u, const uint16_t *e)
+/* Pixel u composited with entry e; in a table built as read, e's diagonal is built first if it is unbuilt. grey:
+ * the table is grey (vfi_blend_entry). */
+static VF_ALWAYS_INLINE void plain_blend(const plain_loop_t *l, const plain_row_t *pr, uint32_t u, const uint16_t *e,
+                                         bool grey)
 {
     if (VF_TABLE_ON_DEMAND && !e[3] && e[0] == VFI_UNBUILT_Q15) /* only ever in a table built as read */
         build_entry(pr->demand, l->table, l->n, e);
-    vfi_blend_entry(l->pixels + (size_t)u * 4, l->next, u, e);
+    vfi_blend_entry(l->pixels + (size_t)u * 4, l->next, u, e, grey);
 }
 
 /* The default path (nearest lookup, 16-bit table, no lut, full precision), where preint1 frames spend their time:
@@ -92,27 +95,30 @@ static VF_ALWAYS_INLINE void plain_blend(const plain_loop_t *l, const plain_row_
  * read an unbuilt entry's diagonal is built where the loop meets it: with the image-sized buffer the look-ahead has
  * stored the next pixel's back position over its front one, so the loop may not leave there and come back.
  * Returns the first open pixel at or after y. */
-static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256)
+static VF_ALWAYS_INLINE uint32_t span_plain(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256,
+                                            bool grey)
 {
     plain_loop_t l = pr->loop;
     if (n256)
         l.n = 256;
+    vfi_row_sampler_t back; /* the back samples by pixel: the slice rows from column -cu */
+    vfi_sampler_init(&back, l.top - l.cu, pr->row, l.fx, l.fy, VF_SPECIAL_LOOPS && n256);
     if (!VF_LOOK_AHEAD) {
         for (; u < y; u = vfi_next_open(l.next, u + 1))
-            plain_blend(&l, pr, u, plain_entry(&l, pr, u, buffered, n256));
+            plain_blend(&l, pr, u, plain_entry(&l, pr, &back, u, buffered, n256), grey);
         return u;
     }
     if (u >= y)
         return u;
-    const uint16_t *e = plain_entry(&l, pr, u, buffered, n256);
+    const uint16_t *e = plain_entry(&l, pr, &back, u, buffered, n256);
     for (;;) {
         const uint32_t u_next = vfi_next_open(l.next, u + 1); /* a blend closes only the pixel it blends */
         if (u_next >= y) { /* the span's last: one test a pixel, where the look-up ahead and the exit each had one */
-            plain_blend(&l, pr, u, e);
+            plain_blend(&l, pr, u, e, grey);
             return u_next;
         }
-        const uint16_t *e_next = plain_entry(&l, pr, u_next, buffered, n256);
-        plain_blend(&l, pr, u, e);
+        const uint16_t *e_next = plain_entry(&l, pr, &back, u_next, buffered, n256);
+        plain_blend(&l, pr, u, e, grey);
         u = u_next, e = e_next;
     }
 }
@@ -131,18 +137,22 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
         l.n = 256;
     const vfi_shading_t *sh = pr->shading;
     const uint64_t *shade = sh->shade;
-    const size_t off = pr->shade_offset, back_at = (size_t)(l.top - sh->slices);
+    /* the rows, buffers and codes by pixel rather than by the back slice's column (from column -cu): one register
+     * fewer in a loop short of them */
+    const size_t off = pr->shade_offset, back_at = (size_t)(l.top - sh->slices) - l.cu;
+    const uint16_t *back_codes = pr->back_codes - l.cu, *lit = pr->lit;
+    l.top -= l.cu, l.bottom -= l.cu, l.front_buf -= l.cu, l.back_buf -= l.cu, l.cu = 0;
     uint64_t right = 0;          /* bilinear: the last pixel's right column, the left one of the pixel after it */
     uint32_t last_c = UINT32_MAX - 1;
     for (; u < y; u = vfi_next_open(l.next, u + 1)) {
-        const uint32_t c = u - l.cu;
+        const uint32_t c = u;
         /* the front shade read before the back one is stored: an image-sized buffer holds both in one place */
         uint32_t front = buffered ? l.front_buf[c + off] : 0, back;
-        const uint16_t *e = plain_entry(&l, pr, u, buffered, n256);
+        const uint16_t *e = plain_entry(&l, pr, NULL, u, buffered, n256);
         if (VF_TABLE_ON_DEMAND && !e[3] && e[0] == VFI_UNBUILT_Q15) /* its block, the lit values with it */
             build_entry(pr->demand, l.table, l.n, e);
         if (nearest) {
-            back = vfi_shade_pack(shade[pr->back_codes[c]]);
+            back = vfi_shade_pack(shade[back_codes[c]]);
         } else {
             const uint64_t left = c == last_c + 1 ? right : vfi_shade_column(sh, back_at + c, pr->row, l.fy);
             right = vfi_shade_column(sh, back_at + c + 1, pr->row, l.fy);
@@ -161,20 +171,35 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
             front = f.d | f.s << 16;
         }
         const vfi_shade_t f = {front & 0xFFFFu, front >> 16, 32768u}, b = {back & 0xFFFFu, back >> 16, 32768u};
-        const uint16_t *d = pr->lit + (e - l.table);
+        const uint16_t *d = lit + (e - l.table);
         const uint32_t specular = vfi_lit_specular(a, d[3], f, b);
         const uint32_t r = vfi_lit_channel(e[0], d[0], a, specular, f, b);
         const uint32_t g = grey ? r : vfi_lit_channel(e[1], d[1], a, specular, f, b);
         const uint32_t bl = grey ? r : vfi_lit_channel(e[2], d[2], a, specular, f, b);
-        if (vfi_blend_rgba(l.pixels + (size_t)u * 4, r, g, bl, a))
+        uint16_t *px = l.pixels + (size_t)u * 4;
+        if (grey ? vfi_blend_grey(px, r, a) : vfi_blend_rgba(px, r, g, bl, a))
             l.next[u] = (uint16_t)(u + 1);
     }
     return u;
 }
 
 /* span_plain_lit for the frame's shade lookup and colours: out of line, so that a row does not pay for its registers */
+#if VF_SPECIAL_LOOPS
+/* The default lit frame of a grey transfer function (nearest shades, a 256-entry table) with the table's size a
+ * constant: span_lit's other variants take it as it comes, a test and the general rounding a pixel */
+static VF_NOINLINE uint32_t span_lit_grey256(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered)
+{
+    return buffered ? span_plain_lit(pr, u, y, true, true, true, true)
+                    : span_plain_lit(pr, u, y, false, true, true, true);
+}
+#endif
+
 static VF_NOINLINE uint32_t span_lit(const plain_row_t *pr, uint32_t u, uint32_t y, bool buffered, bool n256)
 {
+#if VF_SPECIAL_LOOPS
+    if (n256 && pr->nearest_shade && pr->grey)
+        return span_lit_grey256(pr, u, y, buffered);
+#endif
     if (pr->nearest_shade && pr->grey)
         return buffered ? span_plain_lit(pr, u, y, true, n256, true, true) : span_plain_lit(pr, u, y, false, n256, true, true);
     if (pr->nearest_shade)
@@ -236,7 +261,7 @@ static uint32_t span_general(const row_job_t *job, uint32_t u, uint32_t y, bool 
 /* A row's walked runs (vfi_merge_runs), each cut into spans whose fronts are all buffered or all sampled here. The
  * plain path takes its arrays from pr, the general one from job. */
 static VF_ALWAYS_INLINE void row(const row_job_t *job, const plain_row_t *pr, const vfi_span_t *walked, uint32_t count,
-                                 const row_visits_t *last_row, bool plain, bool n256, bool lit)
+                                 const row_visits_t *last_row, bool plain, bool n256, bool lit, bool grey)
 {
     const vfi_span_t *last = last_row ? last_row->span : NULL;
     const uint32_t last_count = last_row ? last_row->count : 0;
@@ -256,7 +281,7 @@ static VF_ALWAYS_INLINE void row(const row_job_t *job, const plain_row_t *pr, co
             if (VF_LIGHTING && lit)
                 u = span_lit(pr, u, y, buffered, n256);
             else
-                u = buffered ? span_plain(pr, u, y, true, n256) : span_plain(pr, u, y, false, n256);
+                u = buffered ? span_plain(pr, u, y, true, n256, grey) : span_plain(pr, u, y, false, n256, grey);
         }
     }
 }
@@ -271,7 +296,8 @@ static inline const row_visits_t *last_visits(const vfi_slab_rows_t *s, uint32_t
  * same fraction, so row v_lo + k's slice rows, runs and arrays are k rows, cell rows and strides after row v_lo's,
  * and what its loops read is set up once (pr). The general path sets job's row fields for each row (with more rays
  * the fraction and slice row are the row's own). */
-static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s, bool plain, bool n256, bool lit)
+static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s, bool plain, bool n256, bool lit,
+                                      bool grey)
 {
     const slice_place_t *front = job->front, *back = job->back;
     const int32_t lo = MAX(front->u_lo, back->u_lo), hi = MIN(front->u_hi, back->u_hi);
@@ -337,7 +363,7 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
         vfi_merge_init(&m, plain ? 16 : job->step_shift, pairs + runs_f[0], pairs + runs_f[1], front,
                        pairs + runs_b[0], pairs + runs_b[1], back);
         now->count = vfi_merge_runs(&m, lo, hi, now->span);
-        row(job, &pr, now->span, now->count, last, plain, n256, lit);
+        row(job, &pr, now->span, now->count, last, plain, n256, lit, grey);
     }
 }
 
@@ -345,9 +371,17 @@ static VF_ALWAYS_INLINE void slab_rows(row_job_t *job, const vfi_slab_rows_t *s,
 static VF_NOINLINE void slab_rows_lit(row_job_t *job, const vfi_slab_rows_t *s)
 {
     if (job->lookup.n == 256)
-        slab_rows(job, s, true, true, true);
+        slab_rows(job, s, true, true, true, false);
     else
-        slab_rows(job, s, true, false, true);
+        slab_rows(job, s, true, false, true, false);
+}
+#endif
+
+#if VF_SPECIAL_LOOPS
+/* A grey transfer function's table (r = g = b in every entry): one colour product a pixel for three */
+static VF_NOINLINE void slab_rows_grey(row_job_t *job, const vfi_slab_rows_t *s)
+{
+    slab_rows(job, s, true, true, false, true);
 }
 #endif
 
@@ -359,10 +393,16 @@ void vfi_slab_preint1(row_job_t *job, const vfi_slab_rows_t *s)
         return;
     }
 #endif
+#if VF_SPECIAL_LOOPS
+    if (job->plain && job->lookup.n == 256 && job->grey) {
+        slab_rows_grey(job, s);
+        return;
+    }
+#endif
     if (!job->plain)
-        slab_rows(job, s, false, false, false);
+        slab_rows(job, s, false, false, false, false);
     else if (job->lookup.n == 256)
-        slab_rows(job, s, true, true, false);
+        slab_rows(job, s, true, true, false, false);
     else
-        slab_rows(job, s, true, false, false);
+        slab_rows(job, s, true, false, false, false);
 }

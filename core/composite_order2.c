@@ -215,7 +215,7 @@ static VF_ALWAYS_INLINE uint32_t span_plain2(const plain2_t *pl, uint32_t u, uin
         l.back_buf[u - l.back_shift] = b * plane;
         const uint16_t *e = l.table + ((size_t)f + m * n2 + b) * 4;
         if (!lut) {
-            vfi_blend_entry(l.pixels + (size_t)u * 4, l.next, u, e);
+            vfi_blend_entry(l.pixels + (size_t)u * 4, l.next, u, e, false);
         } else if (e[3]) { /* segment.h's vfi_correct, written out */
             uint32_t seg[4], fa;
             const uint64_t g = vfi_lut_at(l.lut_f, l.lut_g, e[3], &fa);

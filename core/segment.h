@@ -172,4 +172,21 @@ static inline bool vfi_blend_q15(uint16_t *px, const uint16_t *e)
     return px[3] >= VFI_OPAQUE_Q15;
 }
 
+/* vfi_blend_rgba for a grey segment (r = g = b = c): one colour product, its sum added to all three channels of the
+ * pixel's word at once. Each channel's sum stays below 2^16 (at most 1.0 and a rounding), so the adds in one word
+ * do not carry into each other: every channel gets the sum vfi_blend_rgba gives it, whether or not the pixel's
+ * three colours are equal. */
+static inline bool vfi_blend_grey(uint16_t *px, uint32_t c, uint32_t a)
+{
+    const uint64_t before = px[0] | (uint64_t)px[1] << 16 | (uint64_t)px[2] << 32 | (uint64_t)px[3] << 48;
+    const uint32_t t = VFI_ONE_Q15 - px[3];
+    const uint32_t add_c = (t * c + 0x4000u) >> 15, add_a = (t * a + 0x4000u) >> 15;
+    const uint64_t after = before + (add_c * 0x10001u | (uint64_t)(add_c | add_a << 16) << 32);
+    px[0] = (uint16_t)after;
+    px[1] = (uint16_t)(after >> 16);
+    px[2] = (uint16_t)(after >> 32);
+    px[3] = (uint16_t)(after >> 48);
+    return px[3] >= VFI_OPAQUE_Q15;
+}
+
 #endif

@@ -56,7 +56,7 @@ static inline uint64_t vfi_shade_lanes(uint32_t packed)
 
 static inline uint32_t vfi_shade_pack(uint64_t lanes)
 {
-    return (uint32_t)(lanes & 0xFFFFu) | (uint32_t)(lanes >> 32) << 16;
+    return (uint32_t)(lanes | lanes >> 16); /* each lane below 2^16: L_s lands on bits 16-31 over L_d's clear ones */
 }
 
 /* (1 - f) a + f b in each lane, f Q0.16, rounded: every lane below 2^16 in, so below 2^32 before the shift (no

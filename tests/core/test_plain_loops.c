@@ -3,12 +3,14 @@
  * test_plain_loops.c: the plain compositing loops (core/composite_order0.c, composite_order1.c: the fast paths of
  * point and preint1, unlit and lit) against the general loops, which every option takes: the same intermediate
  * image, to the bit, over modes, table sizes (256 and not), buffers, nearest and bilinear shades, grey and coloured
- * transfer functions, random volumes, views and lights.
+ * transfer functions, random volumes, views and lights; and the pieces of the grey and column-wise loops against
+ * what they stand for: vfi_blend_grey against vfi_blend_rgba, vfi_sampler_entry against vfi_entry_rows.
  */
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
+#include "composite.h"
 #include "scene_fixture.h"
 #include "volfix.h"
 #include "volfix_internal.h"
@@ -107,5 +109,65 @@ static void plain_equals_general(void)
     CHECK_EQ(compared, 160);
 }
 
-CHECK_CASES({"plain loops equal the general ones", plain_equals_general});
+/* A pixel front to back through a run of segments: vfi_blend_grey against vfi_blend_rgba with r = g = b, the four
+ * channels to the bit and the opaque answers, from grey pixels and from pixels whose colours differ (the blend adds
+ * the same sum to each whatever they hold), with colours up to alpha and a rounding above it and segments at the
+ * ends of the range. */
+static void blend_grey_equals_rgba(void)
+{
+    int blends = 0;
+    for (int t = 0; t < 4000; t++) {
+        uint16_t a[4], b[4];
+        const uint32_t a0 = check_below(&seed, 32769);
+        a[3] = (uint16_t)a0;
+        for (int c = 0; c < 3; c++)
+            a[c] = (uint16_t)(t % 2 ? a0 : check_below(&seed, a0 + 1)); /* odd: grey; even: the colours differ */
+        memcpy(b, a, sizeof a);
+        for (int k = 0; k < 40; k++) {
+            const uint32_t kind = check_below(&seed, 8);
+            const uint32_t alpha = kind == 0 ? 0 : kind == 1 ? 32768 : check_below(&seed, 32769);
+            uint32_t colour = kind == 2 ? alpha : check_below(&seed, alpha + 1);
+            if (kind == 3 && colour < 32768)
+                colour++; /* a rounding above alpha */
+            const bool ga = vfi_blend_grey(a, colour, alpha), gb = vfi_blend_rgba(b, colour, colour, colour, alpha);
+            CHECK_MSG(ga == gb && !memcmp(a, b, sizeof a), "case %d, segment %d (c %u, a %u): grey %u %u %u %u, rgba %u %u "
+                      "%u %u", t, k, colour, alpha, a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]);
+            blends++;
+        }
+    }
+    CHECK_EQ(blends, 160000);
+}
+
+/* Samples along a row by columns, pixels in runs with gaps (the left column taken over or worked out), against the
+ * lerps across then down, for both roundings (a 256-entry table's folded bias, and n entries), with fractions and
+ * voxels at their ends. */
+static void sampler_equals_rows(void)
+{
+    enum { COLS = 64 };
+    uint8_t rows[2 * (COLS + 1)];
+    int samples = 0;
+    for (int t = 0; t < 2000; t++) {
+        for (int i = 0; i < 2 * (COLS + 1); i++)
+            rows[i] = (uint8_t)(t % 5 == 0 ? 255 * check_below(&seed, 2) : check_below(&seed, 256));
+        const uint32_t ends[] = {0, 1, 32768, 65535};
+        const uint32_t fx = t % 3 ? check_below(&seed, 65536) : ends[check_below(&seed, 4)];
+        const uint32_t fy = t % 4 ? check_below(&seed, 65536) : ends[check_below(&seed, 4)];
+        const bool n256 = t % 2 == 0;
+        const uint32_t n = n256 ? 256 : 2 + check_below(&seed, 1023);
+        vfi_row_sampler_t smp;
+        vfi_sampler_init(&smp, rows, COLS + 1, fx, fy, n256);
+        for (uint32_t c = check_below(&seed, 4); c < COLS; c += 1 + (check_below(&seed, 4) == 0) * check_below(&seed, 5)) {
+            const uint32_t got = vfi_sampler_entry(&smp, c, n, n256);
+            const uint32_t want = vfi_entry_rows(rows + c, rows + COLS + 1 + c, fx, fy, n, n256);
+            CHECK_MSG(got == want, "case %d, column %u (fx %u, fy %u, n %u): %u, the rows' lerps %u", t, c, fx, fy, n, got,
+                      want);
+            samples++;
+        }
+    }
+    CHECK(samples > 40000);
+}
+
+CHECK_CASES({"plain loops equal the general ones", plain_equals_general},
+            {"the grey blend equals the four-channel one", blend_grey_equals_rgba},
+            {"samples by columns equal the rows' lerps", sampler_equals_rows});
 CHECK_RUN("plain-loops")
