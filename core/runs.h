@@ -54,6 +54,14 @@ void vfi_bricks_build(vfi_bricks_t *bricks, const uint8_t *z_copy, const uint32_
 size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *layout, const vfi_classify_t *cls,
                        const vfi_bricks_t *bricks, uint32_t *row_start, uint16_t *pairs, size_t capacity);
 
+/* The same for the cells of slabs [k0, k1) alone: their rows' index entries (row_start[k0 n_j] ..
+ * row_start[k1 n_j - 1], counted from the first value written here) and their pairs; no other entry is written,
+ * so that slab ranges can be encoded side by side into one index. vfi_runs_encode is the range of every slab
+ * followed by the index's closing entry. */
+size_t vfi_runs_encode_slabs(const uint8_t *copy, const vfi_layout_t *layout, const vfi_classify_t *cls,
+                             const vfi_bricks_t *bricks, uint32_t k0, uint32_t k1, uint32_t *row_start,
+                             uint16_t *pairs, size_t capacity);
+
 /* Whether run lists made elsewhere (row_count index entries, pair_count values) are whole for this layout: the
  * index starts at 0, never falls, ends at pair_count, every row holds whole pairs and at most n_i cells. */
 bool vfi_runs_valid(const uint32_t *row_start, size_t row_count, const uint16_t *pairs, size_t pair_count,
