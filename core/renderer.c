@@ -291,20 +291,18 @@ vf_status_t vf_renderer_set_tf(vf_renderer_t *r, const vf_tf_t *tf)
 
 vf_status_t vf_renderer_set_tf_begin(vf_renderer_t *r, const vf_tf_t *tf, uint32_t ranges)
 {
-    if (!r)
-        return VF_ERR_NULL;
-    if (ranges > VF_MAX_ENCODE_PARTS / 3 && ranges > 1)
+    if (r && ranges > VF_MAX_ENCODE_PARTS / 3 && ranges > 1)
         return VF_ERR_ARG;
-    vf_status_t s = classify_tf(r, tf);
-    if (s != VF_OK)
-        return s;
-    if (!r->have_window)
-        return VF_OK;
 #if VF_MAX_ENCODE_PARTS >= 6
-    if (ranges > 1 && !is_prebuilt(r)) /* prebuilt run lists may be adopted: then there is nothing to share out */
+    /* prebuilt run lists may be adopted: then there is nothing to share out */
+    if (r && ranges > 1 && !is_prebuilt(r)) {
+        vf_status_t s = classify_tf(r, tf);
+        if (s != VF_OK || !r->have_window)
+            return s;
         return vfi_encode_parts_begin(r, ranges);
+    }
 #endif
-    return vfi_encode_runs(r);
+    return vf_renderer_set_tf(r, tf); /* (a build without parts keeps classify_tf in set_tf alone) */
 }
 
 vf_status_t vf_renderer_set_lighting(vf_renderer_t *r, const vf_lighting_t *l)
@@ -922,7 +920,7 @@ vf_status_t vfi_encode_runs(vf_renderer_t *r)
      * axes counted, to say how big an arena would do (vf_renderer_needed_bytes). */
     uint32_t *index[3];
     size_t total = 0;
-    bool short_of_memory = !vfi_runs_indices(r, index, &total);
+    bool short_of_memory = !vfi_runs_indices(r->arena, r->layout, index, &total);
     for (int a = 0; a < 3; a++) {
         vfi_runs_t *runs = &r->runs[a];
         size_t free_bytes = 0, values;
@@ -944,19 +942,6 @@ vf_status_t vfi_encode_runs(vf_renderer_t *r)
         return VF_ERR_NOMEM;
     r->have_runs = true;
     return VF_OK;
-}
-
-bool vfi_runs_indices(vf_renderer_t *r, uint32_t *index[3], size_t *bytes)
-{
-    bool fit = true;
-    *bytes = 0;
-    for (int a = 0; a < 3; a++) {
-        const size_t index_bytes = vfi_runs_index_bytes(&r->layout[a]);
-        index[a] = fit ? vfi_arena_alloc(r->arena, index_bytes) : NULL;
-        fit = index[a] != NULL;
-        *bytes += index_bytes;
-    }
-    return fit;
 }
 
 /* The tables depend on the transfer function and on the slab length, which changes with the view; with the

@@ -48,13 +48,14 @@ struct vf_renderer {
     bool have_runs;
 #if VF_MAX_ENCODE_PARTS >= 6
     /* An encoding left in parts by vf_renderer_set_tf_begin (runs_parts.c): the indices in place, a region of the
-     * free space a part, and what each part's pairs need (part_values, written by that part alone). */
+     * arena's free space a part, and what each part's pairs need (part_values, each written by its part alone),
+     * all in the free space above the indices. */
     uint32_t encode_parts;  /* parts to run before vf_renderer_set_tf_end; 0: none */
     uint32_t encode_ranges; /* slab ranges per axis: encode_parts / 3 */
     uint32_t *part_index[3];
     uint16_t *part_pairs;   /* region q: part_pairs + q part_capacity */
     size_t part_capacity;   /* uint16 values a region holds */
-    size_t part_values[VF_MAX_ENCODE_PARTS];
+    size_t *part_values;    /* [encode_parts], SIZE_MAX before the part has run */
 #endif
 
     vfi_table_scratch_t table_scratch;
@@ -153,10 +154,8 @@ static inline bool vfi_lit(const vf_renderer_t *r)
 vf_status_t vfi_prebuilt_check(const vf_params_t *p, const vf_volume_t *vol, const vf_prebuilt_t *pre);
 bool vfi_prebuilt_adopt_runs(vf_renderer_t *r);
 
-/* renderer.c: the whole run-length encoding of set_tf and set_window (the indices, then each axis's pairs), and
- * the indices alone, allocated after the mark (false when they do not fit; *bytes: what the three take). */
+/* renderer.c: the whole run-length encoding of set_tf and set_window (the indices, then each axis's pairs). */
 vf_status_t vfi_encode_runs(vf_renderer_t *r);
-bool vfi_runs_indices(vf_renderer_t *r, uint32_t *index[3], size_t *bytes);
 /* runs_parts.c: the indices, and a region of the free space for each of 3 ranges parts; or, where that cannot be
  * (no room), the whole encoding. */
 vf_status_t vfi_encode_parts_begin(vf_renderer_t *r, uint32_t ranges);

@@ -5,7 +5,7 @@
  *
  * The arena after the mark is laid out as the whole encoding leaves it: the three indices, then each axis's pairs
  * in a block. Begin allocates the indices and cuts the free space above them into one region a part, in part
- * order. Part q (axis q / ranges, its (q % ranges)-th range of slabs) writes its rows' index entries in place,
+ * order, and keeps each part's count of values at the free space's end. Part q (axis q / ranges, its (q % ranges)-th range of slabs) writes its rows' index entries in place,
  * counted from its own first value, and its pairs into its region. The join then walks the parts in order, adds
  * to each part's entries the values before it on its axis and moves its pairs down to follow them. Moving down is
  * safe: the values before a part take no more room than the regions before it (each region is a multiple of the
@@ -45,15 +45,19 @@ vf_status_t vfi_encode_parts_begin(vf_renderer_t *r, uint32_t ranges)
     r->encode_parts = 0;
     vfi_arena_rewind(arena, r->runs_mark);
     size_t index_bytes, free_bytes;
-    if (!vfi_runs_indices(r, r->part_index, &index_bytes))
+    if (!vfi_runs_indices(arena, r->layout, r->part_index, &index_bytes))
         return vfi_encode_runs(r); /* short of memory: the whole encoding counts what would do */
     const uint32_t parts = 3 * ranges;
-    uint16_t *top = vfi_arena_top(arena, &free_bytes);
-    const size_t region_bytes = free_bytes / parts / VFI_ALIGN * VFI_ALIGN;
+    unsigned char *top = vfi_arena_top(arena, &free_bytes);
+    /* each part's count at the free space's end, where the join moves nothing; the regions below it */
+    const size_t count_bytes = vfi_arena_block(sizeof(size_t) * parts);
+    const size_t below = free_bytes > count_bytes ? (free_bytes - count_bytes) / VFI_ALIGN * VFI_ALIGN : 0;
+    const size_t region_bytes = below / parts / VFI_ALIGN * VFI_ALIGN;
     if (!top || !region_bytes)
         return vfi_encode_runs(r);
-    r->part_pairs = top;
+    r->part_pairs = (uint16_t *)top;
     r->part_capacity = region_bytes / sizeof(uint16_t);
+    r->part_values = (size_t *)(top + below);
     for (uint32_t q = 0; q < parts; q++)
         r->part_values[q] = NOT_RUN;
     r->encode_ranges = ranges;
