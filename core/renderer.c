@@ -302,7 +302,7 @@ vf_status_t vf_renderer_set_tf_begin(vf_renderer_t *r, const vf_tf_t *tf, uint32
         return vfi_encode_parts_begin(r, ranges);
     }
 #endif
-    return vf_renderer_set_tf(r, tf); /* (a build without parts keeps classify_tf in set_tf alone) */
+    return vf_renderer_set_tf(r, tf); /* one range, or prebuilt storage: the whole encoding */
 }
 
 vf_status_t vf_renderer_set_lighting(vf_renderer_t *r, const vf_lighting_t *l)
