@@ -351,7 +351,7 @@ static void *worker_main(void *arg)
     unsigned seen = 0;
     for (;;) {
         wait_while(pool, &pool->posted, seen);
-        seen++; /* one post a frame: the caller waits for the frame to end before it posts again */
+        seen++; /* one post a job (a frame or an encoding): the caller waits for it to end before it posts again */
         if (atomic_load(&pool->quit))
             return NULL;
         if (pool->work.job == JOB_ENCODE)
