@@ -15,7 +15,6 @@ static size_t table_value_bytes(const vf_params_t *p);
 static size_t table_entries(const vf_params_t *p);
 static size_t table_bytes(const vf_params_t *p);
 static bool has_view_table(const vf_params_t *p);
-static vf_status_t encode_runs(vf_renderer_t *r);
 static void update_tables(vf_renderer_t *r, uint32_t parts, bool one_thread, bool thread_tables);
 #if VF_TABLE_ON_DEMAND
 static bool on_demand(const vf_renderer_t *r);
@@ -262,13 +261,12 @@ vf_status_t vf_renderer_set_window(vf_renderer_t *r, vf_window_t window)
     if (VF_RUN_BRICKS)
         vfi_bricks_build(&r->bricks, r->slices[2], r->volume.dims);
     r->have_window = true;
-    return r->have_tf ? encode_runs(r) : VF_OK;
+    return r->have_tf ? vfi_encode_runs(r) : VF_OK;
 }
 
-vf_status_t vf_renderer_set_tf(vf_renderer_t *r, const vf_tf_t *tf)
+/* Classify the transfer function; the run lists are then stale (have_runs stays as it was until they are made). */
+static vf_status_t classify_tf(vf_renderer_t *r, const vf_tf_t *tf)
 {
-    if (!r)
-        return VF_ERR_NULL;
     vf_status_t s = vfi_classify(&r->cls, tf);
     if (s != VF_OK)
         return s; /* checked before anything was written: the previous transfer function stands */
@@ -278,7 +276,33 @@ vf_status_t vf_renderer_set_tf(vf_renderer_t *r, const vf_tf_t *tf)
     for (uint32_t i = 0; i < tf->count; i++)
         r->tf_grey = r->tf_grey && tf->points[i].r == tf->points[i].g && tf->points[i].g == tf->points[i].b;
     r->tf_generation++;
-    return r->have_window ? encode_runs(r) : VF_OK;
+    return VF_OK;
+}
+
+vf_status_t vf_renderer_set_tf(vf_renderer_t *r, const vf_tf_t *tf)
+{
+    if (!r)
+        return VF_ERR_NULL;
+    vf_status_t s = classify_tf(r, tf);
+    if (s != VF_OK)
+        return s;
+    return r->have_window ? vfi_encode_runs(r) : VF_OK;
+}
+
+vf_status_t vf_renderer_set_tf_begin(vf_renderer_t *r, const vf_tf_t *tf, uint32_t ranges)
+{
+    if (r && ranges > VF_MAX_ENCODE_PARTS / 3 && ranges > 1)
+        return VF_ERR_ARG;
+#if VF_MAX_ENCODE_PARTS >= 6
+    /* prebuilt run lists may be adopted: then there is nothing to share out */
+    if (r && ranges > 1 && !is_prebuilt(r)) {
+        vf_status_t s = classify_tf(r, tf);
+        if (s != VF_OK || !r->have_window)
+            return s;
+        return vfi_encode_parts_begin(r, ranges);
+    }
+#endif
+    return vf_renderer_set_tf(r, tf); /* one range, or prebuilt storage: the whole encoding */
 }
 
 vf_status_t vf_renderer_set_lighting(vf_renderer_t *r, const vf_lighting_t *l)
@@ -877,10 +901,13 @@ static size_t extent_bytes(const uint32_t dims[3], uint32_t rays)
 }
 
 /* Rewind to the mark and run-length encode all three copies; on VF_ERR_NOMEM record what would have fitted. */
-static vf_status_t encode_runs(vf_renderer_t *r)
+vf_status_t vfi_encode_runs(vf_renderer_t *r)
 {
     vf_arena_t *arena = r->arena;
     r->have_runs = false;
+#if VF_MAX_ENCODE_PARTS >= 6
+    r->encode_parts = 0; /* parts of an encoding begun before are void */
+#endif
     vfi_arena_rewind(arena, r->runs_mark);
     if (is_prebuilt(r) && vfi_prebuilt_adopt_runs(r)) { /* the prebuilt run lists are of this visibility */
         r->needed = r->runs_mark + VFI_ALIGN;
@@ -888,23 +915,24 @@ static vf_status_t encode_runs(vf_renderer_t *r)
         r->have_runs = true;
         return VF_OK;
     }
-    /* One pass per axis, straight into the arena's free space; only when that is too small are the remaining
+    /* The three indices first (their sizes are known, so that encodings in parts can write theirs in place), then
+     * one pass per axis straight into the arena's free space; only when that is too small are the remaining
      * axes counted, to say how big an arena would do (vf_renderer_needed_bytes). */
+    uint32_t *index[3];
     size_t total = 0;
-    bool short_of_memory = false;
+    bool short_of_memory = !vfi_runs_indices(r->arena, r->layout, index, &total);
     for (int a = 0; a < 3; a++) {
         vfi_runs_t *runs = &r->runs[a];
-        size_t index_bytes = vfi_runs_index_bytes(&r->layout[a]), free_bytes = 0, values;
-        uint32_t *row_start = short_of_memory ? NULL : vfi_arena_alloc(arena, index_bytes);
-        uint16_t *pairs = row_start ? vfi_arena_top(arena, &free_bytes) : NULL;
-        values = vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, &r->bricks, row_start, pairs,
-                                 free_bytes / sizeof(uint16_t));
-        runs->row_start = row_start;
+        size_t free_bytes = 0, values;
+        uint16_t *pairs = short_of_memory ? NULL : vfi_arena_top(arena, &free_bytes);
+        values = vfi_runs_encode(r->slices[a], &r->layout[a], &r->cls, &r->bricks, short_of_memory ? NULL : index[a],
+                                 pairs, free_bytes / sizeof(uint16_t));
+        runs->row_start = index[a];
         runs->pairs = pairs;
         runs->nj = r->layout[a].nj;
         /* at least one value, so that an all-invisible volume still has a non-NULL array */
         size_t pair_bytes = vfi_arena_block(sizeof(uint16_t) * (values ? values : 1));
-        total += index_bytes + pair_bytes;
+        total += pair_bytes;
         if (!runs->pairs || pair_bytes > free_bytes || !vfi_arena_alloc(arena, pair_bytes))
             short_of_memory = true;
     }

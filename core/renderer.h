@@ -46,6 +46,17 @@ struct vf_renderer {
 
     vfi_runs_t runs[3];
     bool have_runs;
+#if VF_MAX_ENCODE_PARTS >= 6
+    /* An encoding left in parts by vf_renderer_set_tf_begin (runs_parts.c): the indices in place, a region of the
+     * arena's free space a part, and what each part's pairs need (part_values, each written by its part alone),
+     * all in the free space above the indices. */
+    uint32_t encode_parts;  /* parts to run before vf_renderer_set_tf_end; 0: none */
+    uint32_t encode_ranges; /* slab ranges per axis: encode_parts / 3 */
+    uint32_t *part_index[3];
+    uint16_t *part_pairs;   /* region q: part_pairs + q part_capacity */
+    size_t part_capacity;   /* uint16 values a region holds */
+    size_t *part_values;    /* [encode_parts], SIZE_MAX before the part has run */
+#endif
 
     vfi_table_scratch_t table_scratch;
     void *table;            /* point table [N * 4] (point, preclass) or 2D table [N * N * 4] (preint1): r, g, b,
@@ -142,6 +153,12 @@ static inline bool vfi_lit(const vf_renderer_t *r)
  * the prebuilt run lists are of that visibility, then taken as its own. */
 vf_status_t vfi_prebuilt_check(const vf_params_t *p, const vf_volume_t *vol, const vf_prebuilt_t *pre);
 bool vfi_prebuilt_adopt_runs(vf_renderer_t *r);
+
+/* renderer.c: the whole run-length encoding of set_tf and set_window (the indices, then each axis's pairs). */
+vf_status_t vfi_encode_runs(vf_renderer_t *r);
+/* runs_parts.c: the indices, and a region of the free space for each of 3 ranges parts; or, where that cannot be
+ * (no room), the whole encoding. */
+vf_status_t vfi_encode_parts_begin(vf_renderer_t *r, uint32_t ranges);
 
 /* composite.c */
 /* own: a thread's copy of the table built as read (vf_thread_table_t), or NULL for the shared table */

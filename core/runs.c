@@ -198,8 +198,11 @@ static inline int brick_class(const vfi_classify_t *cls, const uint8_t *range)
                                                        : BRICK_MIXED;
 }
 
-size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *l, const vfi_classify_t *cls,
-                       const vfi_bricks_t *bricks, uint32_t *row_start, uint16_t *pairs, size_t capacity)
+/* Slabs [k0, k1) (vfi_runs_encode_slabs); static, so that a build without encodings in parts has it inlined in
+ * its one caller. */
+static size_t encode_slabs(const uint8_t *copy, const vfi_layout_t *l, const vfi_classify_t *cls,
+                           const vfi_bricks_t *bricks, uint32_t k0, uint32_t k1, uint32_t *row_start, uint16_t *pairs,
+                           size_t capacity)
 {
     const bool index = row_start != NULL;
     encoder_t e = {pairs, pairs ? capacity : 0, 0, 0, 0};
@@ -215,7 +218,7 @@ size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *l, const vfi_cla
     const size_t step_i = step[l->i_axis];
     const int k_axis = 3 - l->i_axis - l->j_axis;
     const uint32_t bricks_i = (l->ni + VFI_BRICK - 1) / VFI_BRICK;
-    for (uint32_t k = 0; k + 1 < l->nk; k++)
+    for (uint32_t k = k0; k < k1; k++)
         for (uint32_t j = 0; j < l->nj; j++) {
             if (index)
                 row_start[k * l->nj + j] = (uint32_t)e.used;
@@ -253,9 +256,25 @@ size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *l, const vfi_cla
             if (e.length)
                 emit(&e, e.skip, e.length);
         }
-    if (index)
-        row_start[(l->nk - 1) * l->nj] = (uint32_t)e.used;
     return e.used;
+}
+
+#if VF_MAX_ENCODE_PARTS >= 6
+size_t vfi_runs_encode_slabs(const uint8_t *copy, const vfi_layout_t *l, const vfi_classify_t *cls,
+                             const vfi_bricks_t *bricks, uint32_t k0, uint32_t k1, uint32_t *row_start,
+                             uint16_t *pairs, size_t capacity)
+{
+    return encode_slabs(copy, l, cls, bricks, k0, k1, row_start, pairs, capacity);
+}
+#endif
+
+size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *l, const vfi_classify_t *cls,
+                       const vfi_bricks_t *bricks, uint32_t *row_start, uint16_t *pairs, size_t capacity)
+{
+    const size_t used = encode_slabs(copy, l, cls, bricks, 0, l->nk - 1, row_start, pairs, capacity);
+    if (row_start)
+        row_start[(l->nk - 1) * l->nj] = (uint32_t)used;
+    return used;
 }
 
 bool vfi_runs_valid(const uint32_t *row_start, size_t row_count, const uint16_t *pairs, size_t pair_count,

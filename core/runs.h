@@ -19,6 +19,7 @@
 #ifndef VF_RUNS_H
 #define VF_RUNS_H
 
+#include "arena.h"
 #include "classify.h"
 #include "slices.h"
 
@@ -53,6 +54,30 @@ void vfi_bricks_build(vfi_bricks_t *bricks, const uint8_t *z_copy, const uint32_
  * oracle); else the bricks of the same window. */
 size_t vfi_runs_encode(const uint8_t *copy, const vfi_layout_t *layout, const vfi_classify_t *cls,
                        const vfi_bricks_t *bricks, uint32_t *row_start, uint16_t *pairs, size_t capacity);
+
+/* The same for the cells of slabs [k0, k1) alone: their rows' index entries (row_start[k0 n_j] ..
+ * row_start[k1 n_j - 1], counted from the first value written here) and their pairs; no other entry is written,
+ * so that slab ranges can be encoded side by side into one index. vfi_runs_encode is the range of every slab
+ * followed by the index's closing entry. */
+size_t vfi_runs_encode_slabs(const uint8_t *copy, const vfi_layout_t *layout, const vfi_classify_t *cls,
+                             const vfi_bricks_t *bricks, uint32_t k0, uint32_t k1, uint32_t *row_start,
+                             uint16_t *pairs, size_t capacity);
+
+/* The three axes' indices from the arena, in axis order (false, and NULL for those that did not fit, when it is
+ * short); *bytes: what the three take. Inline: a build without encodings in parts has one caller. */
+static inline bool vfi_runs_indices(vf_arena_t *arena, const vfi_layout_t layout[3], uint32_t *index[3],
+                                    size_t *bytes)
+{
+    bool fit = true;
+    *bytes = 0;
+    for (int a = 0; a < 3; a++) {
+        const size_t index_bytes = vfi_runs_index_bytes(&layout[a]);
+        index[a] = fit ? vfi_arena_alloc(arena, index_bytes) : NULL;
+        fit = index[a] != NULL;
+        *bytes += index_bytes;
+    }
+    return fit;
+}
 
 /* Whether run lists made elsewhere (row_count index entries, pair_count values) are whole for this layout: the
  * index starts at 0, never falls, ends at pair_count, every row holds whole pairs and at most n_i cells. */

@@ -28,6 +28,13 @@
 #define VF_MAX_TABLE_PARTS 64
 #endif
 
+/* Most parts a transfer function's run-length encoding can be left in (vf_renderer_set_tf_begin: each principal
+ * axis's slabs in ranges, a part a range of an axis); below 6 (a single-core build: VF_MAX_TABLE_PARTS 1) begin always
+ * encodes the whole, and the parts' code and state are left out. */
+#ifndef VF_MAX_ENCODE_PARTS
+#define VF_MAX_ENCODE_PARTS (VF_MAX_TABLE_PARTS > 1 ? 48 : 1)
+#endif
+
 /* View tables: with the lut correction and nearest lookup in a 16-bit table, the lut is applied to every table
  * entry once a view rather than to every segment a frame (the same pixels for a fraction of the work, and a second
  * table's memory). 0 leaves them out (about 400 bytes of Cortex-M4 code), and the lut corrects each segment. */

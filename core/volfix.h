@@ -10,6 +10,7 @@
  *   vf_renderer_create          once per volume and parameter set (reserves all fixed-size memory)
  *   vf_renderer_set_window      when the window changes: the volume is resampled to 8-bit slices, one copy per axis
  *   vf_renderer_set_tf          when the transfer function changes: classification and run-length encoding
+ *   vf_renderer_set_tf_begin    (threads only) the same with the encoding in parts, run side by side, then _end
  *   vf_renderer_begin           per frame: factor the view; bring the tables up to date for its slab length
  *   vf_renderer_build_table_part  (threads only) the parts of a stale pre-integrated table, side by side
  *   vf_renderer_thread_table_begin  (threads only) a thread's copy of a table built as read, before its bands
@@ -285,6 +286,21 @@ vf_status_t vf_renderer_create(vf_renderer_t **renderer, const vf_params_t *para
                                vf_arena_t *arena);
 vf_status_t vf_renderer_set_window(vf_renderer_t *renderer, vf_window_t window);
 vf_status_t vf_renderer_set_tf(vf_renderer_t *renderer, const vf_tf_t *tf);
+
+/* vf_renderer_set_tf with the run-length encoding shared out, for callers with threads. Begin classifies (its
+ * errors are set_tf's) and, with ranges 2 .. VF_MAX_ENCODE_PARTS / 3, leaves the encoding in parts: each principal
+ * axis's slabs in that many ranges. vf_renderer_encode_parts then says how many parts there are (0 when begin
+ * encoded the whole itself, as set_tf: ranges 0 or 1, no window yet, prebuilt storage, or too little free arena
+ * for the parts' regions; begin's status is then set_tf's); run each part 0 .. parts - 1 once, on any threads,
+ * each call on its own part (they share nothing else); then vf_renderer_set_tf_end joins them on one thread
+ * (running any part left out) and returns what set_tf would have: the run lists are the same to the byte, and
+ * so are VF_ERR_NOMEM and vf_renderer_needed_bytes (a part whose pairs outgrow its region of the free arena
+ * makes end encode the whole instead). Until end, frames give VF_ERR_STATE. VF_ERR_ARG for ranges above
+ * VF_MAX_ENCODE_PARTS / 3, or a part out of range. */
+vf_status_t vf_renderer_set_tf_begin(vf_renderer_t *renderer, const vf_tf_t *tf, uint32_t ranges);
+uint32_t vf_renderer_encode_parts(const vf_renderer_t *renderer);
+vf_status_t vf_renderer_encode_part(vf_renderer_t *renderer, uint32_t part);
+vf_status_t vf_renderer_set_tf_end(vf_renderer_t *renderer);
 
 /* Light the frames that follow (the renderer must have been created with params.lighting: else
  * VF_ERR_UNSUPPORTED), or NULL: unlit, the pixels of a renderer without lighting to the bit. VF_ERR_ARG for a

@@ -16,26 +16,31 @@
 
 void vfp_image_to_rgb(const vf_image_t *img, uint8_t *rgb)
 {
+    /* RGB565's 5- and 6-bit fields to 8 bits, rounded to nearest: from tables, with the format chosen once an
+     * image rather than a pixel (the headless board converts every frame it shows) */
+    uint8_t five[32], six[64];
+    for (unsigned v = 0; v < 64; v++) {
+        if (v < 32)
+            five[v] = (uint8_t)((v * 255 + 15) / 31);
+        six[v] = (uint8_t)((v * 255 + 31) / 63);
+    }
     for (uint32_t y = 0; y < img->height; y++) {
         const uint8_t *src = (const uint8_t *)img->pixels + (size_t)y * img->stride;
         uint8_t *dst = rgb + (size_t)y * img->width * 3;
-        for (uint32_t x = 0; x < img->width; x++, dst += 3) {
-            switch (img->format) {
-            case VF_FORMAT_RGB888:
-                memcpy(dst, src + x * 3, 3);
-                break;
-            case VF_FORMAT_RGB565: {
-                unsigned word = src[x * 2] | (unsigned)src[x * 2 + 1] << 8;
-                dst[0] = (uint8_t)(((word >> 11) * 255 + 15) / 31);
-                dst[1] = (uint8_t)((((word >> 5) & 63) * 255 + 31) / 63);
-                dst[2] = (uint8_t)(((word & 31) * 255 + 15) / 31);
-                break;
+        if (img->format == VF_FORMAT_RGB888) {
+            memcpy(dst, src, (size_t)img->width * 3);
+        } else if (img->format == VF_FORMAT_RGB565) {
+            for (uint32_t x = 0; x < img->width; x++, dst += 3) {
+                const unsigned word = src[x * 2] | (unsigned)src[x * 2 + 1] << 8;
+                dst[0] = five[word >> 11];
+                dst[1] = six[(word >> 5) & 63];
+                dst[2] = five[word & 31];
             }
-            default: /* XRGB8888: B, G, R, X */
+        } else { /* XRGB8888: B, G, R, X */
+            for (uint32_t x = 0; x < img->width; x++, dst += 3) {
                 dst[0] = src[x * 4 + 2];
                 dst[1] = src[x * 4 + 1];
                 dst[2] = src[x * 4 + 0];
-                break;
             }
         }
     }

@@ -22,6 +22,9 @@
 #define WARP_FEWEST 4
 /* Parts of a stale table a thread: more than one, so that a thread that finishes its part early takes another */
 #define PARTS_PER_THREAD 4
+/* Slab ranges of each principal axis a thread when a transfer function's run lists are encoded in parts: with
+ * three axes, six parts a thread, so that the last part taken costs the thread that is late a sixth of its share */
+#define RANGES_PER_THREAD 2
 /* How long a thread that waits for the others polls before it sleeps: longer than a frame's usual imbalance and
  * the main thread's work between frames (a few tens of microseconds), short enough not to hold a shared core. */
 #define SPIN_NS 60000
@@ -32,9 +35,15 @@
 
 enum { FAIL_TABLES, FAIL_BANDS };
 
-/* What one frame gives every thread: the stages run one after another, each shared out by a counter. */
+/* What the workers are woken for: a frame, or the parts of a transfer function's run-length encoding. */
+enum { JOB_FRAME, JOB_ENCODE };
+
+/* What one frame (or encoding) gives every thread: the stages run one after another, each shared out by a
+ * counter. */
 typedef struct frame_work {
     vfp_render_t *r;
+    int job;
+    uint32_t encode_parts;      /* JOB_ENCODE: the parts vf_renderer_set_tf_begin left, claimed with next_part */
     const vf_image_t *image;
     uint32_t table_parts;       /* parts of a stale table to build before compositing, 0 when it is up to date */
     uint32_t int_rows, out_rows; /* intermediate rows to composite, output rows to warp */
@@ -71,6 +80,8 @@ static struct vfp_pool *pool_start(int threads);
 static void pool_stop(struct vfp_pool *pool);
 static void *worker_main(void *arg);
 static void run_frame(struct vfp_pool *pool, frame_work_t *work, int index);
+static void run_encode(struct vfp_pool *pool, frame_work_t *work);
+static vf_status_t set_tf_parts(vfp_render_t *r);
 static bool fill_diagonal(void *context, uint32_t diagonal);
 static void built_diagonal(void *context, uint32_t diagonal);
 static void barrier(struct vfp_pool *pool);
@@ -144,6 +155,7 @@ vfp_status_t vfp_render_frame(vfp_render_t *r, const vf_view_t *view, const vf_i
     }
     frame_work_t local, *work = pool ? &pool->work : &local;
     work->r = r;
+    work->job = JOB_FRAME;
     work->image = image;
     work->table_parts = vf_renderer_table_parts(r->core);
     work->int_rows = vf_renderer_factor(r->core)->int_h;
@@ -243,7 +255,7 @@ static vfp_status_t apply(vfp_render_t *r, int window_changed, char *err, size_t
         if (r->have_window && (window_changed || r->core_fresh))
             s = vf_renderer_set_window(r->core, r->window);
         if (s == VF_OK && r->have_tf && (!window_changed || r->core_fresh))
-            s = vf_renderer_set_tf(r->core, &r->tf);
+            s = set_tf_parts(r);
         if (s == VF_OK) {
             r->core_fresh = 0;
             r->ms_classify = vfp_now_ms() - t0;
@@ -259,6 +271,31 @@ static vfp_status_t apply(vfp_render_t *r, int window_changed, char *err, size_t
             return VFP_ERR;
     }
     return VFP_ERR;
+}
+
+/* The transfer function to the core, its run-length encoding on the pool's threads: the run lists, and any
+ * error, are vf_renderer_set_tf's. */
+static vf_status_t set_tf_parts(vfp_render_t *r)
+{
+    struct vfp_pool *pool = r->pool;
+    uint32_t ranges = pool ? RANGES_PER_THREAD * (uint32_t)(pool->workers + 1) : 0;
+    if (ranges > VF_MAX_ENCODE_PARTS / 3)
+        ranges = VF_MAX_ENCODE_PARTS / 3;
+    vf_status_t s = vf_renderer_set_tf_begin(r->core, &r->tf, ranges);
+    const uint32_t parts = s == VF_OK ? vf_renderer_encode_parts(r->core) : 0;
+    r->tf_parts = parts;
+    if (!parts)
+        return s; /* encoded whole, or failed, as set_tf */
+    frame_work_t *work = &pool->work;
+    work->r = r;
+    work->job = JOB_ENCODE;
+    work->encode_parts = parts;
+    work->threads = pool->workers + 1;
+    atomic_init(&work->next_part, 0);
+    atomic_fetch_add(&pool->posted, 1); /* sequentially consistent: the work above is seen with it */
+    wake_all(pool, &pool->posted);
+    run_encode(pool, work);
+    return vf_renderer_set_tf_end(r->core);
 }
 
 static uint32_t table_parts(int threads)
@@ -314,10 +351,13 @@ static void *worker_main(void *arg)
     unsigned seen = 0;
     for (;;) {
         wait_while(pool, &pool->posted, seen);
-        seen++; /* one post a frame: the caller waits for the frame to end before it posts again */
+        seen++; /* one post a job (a frame or an encoding): the caller waits for it to end before it posts again */
         if (atomic_load(&pool->quit))
             return NULL;
-        run_frame(pool, &pool->work, w->index);
+        if (pool->work.job == JOB_ENCODE)
+            run_encode(pool, &pool->work);
+        else
+            run_frame(pool, &pool->work, w->index);
     }
 }
 
@@ -399,6 +439,19 @@ static void run_frame(struct vfp_pool *pool, frame_work_t *work, int index)
             fail(&work->status[FAIL_BANDS], s);
     }
     barrier(pool); /* the frame ends when every thread has left it: the caller may then change anything */
+}
+
+/* A thread's share of an encoding: parts claimed one at a time until none is left. A part only fails for a number
+ * out of range, which the counter never gives. */
+static void run_encode(struct vfp_pool *pool, frame_work_t *work)
+{
+    for (;;) {
+        unsigned part = atomic_fetch_add_explicit(&work->next_part, 1, memory_order_relaxed);
+        if (part >= work->encode_parts)
+            break;
+        vf_renderer_encode_part(work->r->core, part);
+    }
+    barrier(pool); /* every part has run when the caller joins them */
 }
 
 /* A band of thread w met an unbuilt diagonal of its copy of the table: copied from another thread's copy that has

@@ -8,6 +8,9 @@
  * Where one thread would build the 2D table as compositing reads it, a diagonal at a time, threads do the same in
  * a copy each, and a thread that needs a diagonal another has built copies it instead of building it again.
  *
+ * A transfer function's run-length encoding is shared out too: each principal axis's slabs in ranges, a part a
+ * range, joined by the core into the run lists one thread would make (vf_renderer_set_tf_begin).
+ *
  * The threads live as long as the renderer: vfp_render_open starts threads - 1 workers, each frame wakes them
  * once, and the calling thread works beside them; vfp_render_close joins them. A renderer is used by one thread
  * at a time (its caller).
@@ -45,6 +48,8 @@ typedef struct vfp_render {
     struct vfp_pool *pool;            /* the workers, NULL with one thread */
     double ms_tables, ms_composite, ms_warp; /* the last frame's stages (begin includes table rebuilds) */
     double ms_classify;                      /* the last window or transfer-function change */
+    uint32_t tf_parts;                /* the parts the last transfer function's run-length encoding was shared out
+                                       * in (0: encoded whole on the calling thread) */
 } vfp_render_t;
 
 /* All return VFP_OK, or VFP_ERR with a one-line message in err. */

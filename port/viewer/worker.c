@@ -5,7 +5,15 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/syscall.h>
 #include <unistd.h>
+
+/* The nice value of this thread, and so of the render pool it starts (threads inherit it): the full-quality
+ * frame is background work, and where the board has no more cores than the preview's threads, a preview that
+ * answers a knob while this renderer still works shares them with it. At 10 the kernel gives this thread about
+ * a tenth of a core the preview wants (CFS weights 110 against 1024). */
+#define BACKGROUND_NICE 10
 
 static int outdated(viewer_worker_t *w, uint64_t gen)
 {
@@ -23,6 +31,11 @@ static vfp_status_t ensure_image(vf_image_t *img, uint32_t width, uint32_t heigh
 static void *worker_main(void *arg)
 {
     viewer_worker_t *w = arg;
+    /* On Linux each thread has its own nice value, named by the thread's id; a failure leaves the full frame as
+     * urgent as the preview: previews then answer more slowly, not wrongly */
+    if (setpriority(PRIO_PROCESS, (id_t)syscall(SYS_gettid), BACKGROUND_NICE) != 0) {
+        /* nothing to undo */
+    }
     pthread_mutex_lock(&w->lock);
     for (;;) {
         while (!w->stop && !w->have_request)

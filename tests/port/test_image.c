@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "io/pngio.h"
 #include "render/image.h"
 
 static void hash_is_fnv1a_64_over_the_pixel_bytes(void)
@@ -33,6 +34,40 @@ static void alloc_and_free(void)
     vfp_image_free(&img); /* twice is harmless */
 }
 
+/* vfp_image_to_rgb (io/pngio.h): every RGB565 word, in a 256x256 image with a padded stride, to the 8 bits of
+ * each field rounded to nearest; RGB888 copied and XRGB8888 reordered, pixel by pixel. */
+static void to_rgb_every_format(void)
+{
+    static uint8_t px[256 * 516], rgb[256 * 256 * 3];
+    for (unsigned w = 0; w < 65536; w++) {
+        px[(w >> 8) * 516 + (w & 255) * 2] = (uint8_t)(w & 255);
+        px[(w >> 8) * 516 + (w & 255) * 2 + 1] = (uint8_t)(w >> 8);
+    }
+    vf_image_t img = {px, 256, 256, 516, VF_FORMAT_RGB565};
+    vfp_image_to_rgb(&img, rgb);
+    for (unsigned w = 0; w < 65536; w++) {
+        const uint8_t *o = rgb + (size_t)w * 3;
+        const unsigned r = ((w >> 11) * 255 + 15) / 31, g = (((w >> 5) & 63) * 255 + 31) / 63,
+                       b = ((w & 31) * 255 + 15) / 31;
+        CHECK_MSG(o[0] == r && o[1] == g && o[2] == b, "565 word %04x: %u %u %u, want %u %u %u", w, o[0], o[1], o[2], r,
+                  g, b);
+    }
+    CHECK(rgb[0] == 0 && rgb[65535 * 3] == 255 && rgb[65535 * 3 + 1] == 255 && rgb[65535 * 3 + 2] == 255);
+    for (size_t i = 0; i < sizeof px; i++)
+        px[i] = (uint8_t)(i * 7 + (i >> 9));
+    img = (vf_image_t){px, 100, 3, 400, VF_FORMAT_RGB888};
+    vfp_image_to_rgb(&img, rgb);
+    for (unsigned y = 0; y < 3; y++)
+        CHECK(memcmp(rgb + y * 300, px + y * 400, 300) == 0);
+    img = (vf_image_t){px, 100, 3, 400, VF_FORMAT_XRGB8888};
+    vfp_image_to_rgb(&img, rgb);
+    for (unsigned y = 0; y < 3; y++)
+        for (unsigned x = 0; x < 100; x++) {
+            const uint8_t *i = px + y * 400 + x * 4, *o = rgb + (y * 100 + x) * 3;
+            CHECK(o[0] == i[2] && o[1] == i[1] && o[2] == i[0]);
+        }
+}
+
 CHECK_CASES({"hash_is_fnv1a_64_over_the_pixel_bytes", hash_is_fnv1a_64_over_the_pixel_bytes},
-            {"alloc_and_free", alloc_and_free});
+            {"alloc_and_free", alloc_and_free}, {"to_rgb_every_format", to_rgb_every_format});
 CHECK_RUN("port/image")

@@ -5,6 +5,8 @@
  *     built as read on one thread, in parts with more), for every mode, lit and unlit, the table options that take
  *     other paths (bilinear lookup, the lut's view table, 8-bit entries, the image-sized buffer, rays, partial
  *     slabs), and every pixel format; a transfer-function change and a window change between frames included;
+ *   - a transfer function moved step by step, its run lists encoded in parts on the threads: the frames and run
+ *     lists' memory of one thread after every move;
  *   - renderers opened and closed in a loop, with and without frames, start and join their workers (a hang or a
  *     leak shows here, under the sanitizers).
  */
@@ -176,6 +178,65 @@ static void same_pixels_for_any_thread_count(void)
         }
 }
 
+/* A level knob turning: the transfer function moved step by step (through nothing visible and everything visible
+ * on the way), a frame after each move. With threads the run lists are encoded in parts on them; the frames and
+ * the run lists' memory are those of one thread, move after move. */
+static void tf_moves_on_threads(void)
+{
+    char err[VFP_ERR_LEN];
+    vfp_volume_t vol;
+    vfp_load_opts_t o;
+    memset(&o, 0, sizeof o);
+    CHECK_MSG(vfp_volume_load(&vol, "phantom:shepp-logan:37", &o, err, sizeof err) == VFP_OK, "%s", err);
+    const vf_window_t window = vfp_default_window(&vol);
+    enum { MOVES = 9 };
+    uint64_t hashes[5][MOVES];
+    size_t runs[5][MOVES];
+    vf_image_t img;
+    CHECK(vfp_image_alloc(&img, W, H, VF_FORMAT_RGB565) == VFP_OK);
+    for (int threads = 1; threads <= 4 && !check_failed; threads++) {
+        vf_params_t p;
+        vf_params_default(&p);
+        vfp_render_t r;
+        CHECK_MSG(vfp_render_open(&r, &p, &vol.core, threads, err, sizeof err) == VFP_OK &&
+                      vfp_render_set_window(&r, window, err, sizeof err) == VFP_OK,
+                  "%d threads: %s", threads, err);
+        for (int m = 0; m < MOVES && !check_failed; m++) {
+            vf_tf_point_t points[VF_MAX_TF_POINTS];
+            uint32_t count;
+            if (m == 3 || m == 6) { /* nothing visible, then everything */
+                points[0] = (vf_tf_point_t){0, 65535, 65535, 65535, (uint16_t)(m == 3 ? 0 : 3000)};
+                count = 1;
+            } else {
+                vfp_tf_t tf;
+                CHECK(vfp_tf_preset(&tf, m % 2 ? "ramp" : "sharp", err, sizeof err) == VFP_OK);
+                vfp_tf_move(&tf, &vol, window, 0.06 * (m - 4), 1.0 + 0.1 * (m % 3));
+                count = vfp_tf_to_core(&tf, &vol, window, points);
+            }
+            CHECK_MSG(vfp_render_set_tf(&r, points, count, err, sizeof err) == VFP_OK, "%s", err);
+            CHECK_MSG(threads == 1 ? r.tf_parts == 0 : r.tf_parts >= 6, "%d threads, move %d: %u parts", threads, m,
+                      r.tf_parts);
+            const vf_view_t view = view_at(m % FRAMES);
+            CHECK_MSG(vfp_render_frame(&r, &view, &img, err, sizeof err) == VFP_OK, "%s", err);
+            vf_memory_t mem;
+            vf_renderer_memory(r.core, &mem);
+            hashes[threads][m] = vfp_image_hash(&img);
+            runs[threads][m] = mem.runs;
+            if (threads > 1) {
+                CHECK_MSG(hashes[threads][m] == hashes[1][m], "move %d: %d threads %016llx, 1 thread %016llx", m,
+                          threads, (unsigned long long)hashes[threads][m], (unsigned long long)hashes[1][m]);
+                CHECK_MSG(runs[threads][m] == runs[1][m], "move %d: run lists %zu bytes on %d threads, %zu on 1", m,
+                          runs[threads][m], threads, runs[1][m]);
+            }
+        }
+        vfp_render_close(&r);
+    }
+    /* the moves made different frames, the empty function an empty one */
+    CHECK(hashes[1][0] != hashes[1][1] && hashes[1][3] != hashes[1][6]);
+    vfp_image_free(&img);
+    vfp_volume_free(&vol);
+}
+
 static void open_and_close_in_a_loop(void)
 {
     load_scene();
@@ -206,5 +267,6 @@ static void open_and_close_in_a_loop(void)
     vfp_image_free(&img);
 }
 
-CHECK_CASES(CHECK_CASE(same_pixels_for_any_thread_count), CHECK_CASE(open_and_close_in_a_loop));
+CHECK_CASES(CHECK_CASE(same_pixels_for_any_thread_count), CHECK_CASE(tf_moves_on_threads),
+            CHECK_CASE(open_and_close_in_a_loop));
 CHECK_RUN("port/render_mt")
