@@ -34,12 +34,18 @@ void vfi_preclass_classes(const row_job_t *job, uint64_t *classes)
 void vfi_preclass_terms(const uint64_t *classes, uint32_t fx, bool grey, uint64_t *terms)
 {
     const uint32_t fx1 = 65536u - fx;
+    if (grey) { /* word 0 alone, two scalars a step: the loop's own count and test weigh as much as a term */
+        for (uint32_t s = 0; s < 256; s += 2) {
+            const uint64_t w0 = classes[2 * s], v0 = classes[2 * s + 2];
+            terms[s] = w0 * fx1 + ROUND16, terms[s + 1] = v0 * fx1 + ROUND16;
+            terms[512 + s] = w0 * fx, terms[512 + s + 1] = v0 * fx;
+        }
+        return;
+    }
     for (uint32_t s = 0; s < 256; s++) {
         const uint64_t w0 = classes[2 * s], w1 = classes[2 * s + 1];
         terms[s] = w0 * fx1 + ROUND16;
         terms[512 + s] = w0 * fx;
-        if (grey)
-            continue;
         terms[256 + s] = w1 * fx1 + ROUND16;
         terms[768 + s] = w1 * fx;
     }
