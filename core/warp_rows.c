@@ -204,8 +204,8 @@ static void inner_general(const vfi_warp_row_t *w, const uint16_t *img, int64_t 
     inner_body(w, img, iw, u, v, du, dv, dst, count, background, w->format, w->have_bg, false, false);
 }
 
-/* inner_body for the row's format and background: a loop for each with VF_SPECIAL_LOOPS and Q0.16 weights (the
- * default), else one that asks */
+/* inner_body for the row's format and background, and over no background whether the image is grey: a loop for
+ * each with VF_SPECIAL_LOOPS and Q0.16 weights (the default), else one that asks */
 void vfi_warp_inner(const vfi_warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v, int64_t du,
                     int64_t dv, unsigned char *dst, uint32_t count, const unsigned char *background)
 {
@@ -215,19 +215,28 @@ void vfi_warp_inner(const vfi_warp_row_t *w, const uint16_t *img, int64_t iw, in
     }
     switch (w->format) {
     case VF_FORMAT_RGB888:
-        w->have_bg  ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, true, true, false)
-        : w->grey   ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, false, true, true)
-                    : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, false, true, false);
+        if (w->have_bg)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, true, true, false);
+        else if (w->grey)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, false, true, true);
+        else
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, false, true, false);
         break;
     case VF_FORMAT_RGB565:
-        w->have_bg  ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, true, true, false)
-        : w->grey   ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, false, true, true)
-                    : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, false, true, false);
+        if (w->have_bg)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, true, true, false);
+        else if (w->grey)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, false, true, true);
+        else
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, false, true, false);
         break;
     default:
-        w->have_bg  ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, true, true, false)
-        : w->grey   ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, false, true, true)
-                    : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, false, true, false);
+        if (w->have_bg)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, true, true, false);
+        else if (w->grey)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, false, true, true);
+        else
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, false, true, false);
         break;
     }
 }
