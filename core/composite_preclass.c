@@ -34,12 +34,18 @@ void vfi_preclass_classes(const row_job_t *job, uint64_t *classes)
 void vfi_preclass_terms(const uint64_t *classes, uint32_t fx, bool grey, uint64_t *terms)
 {
     const uint32_t fx1 = 65536u - fx;
+    if (grey) { /* word 0 alone, two scalars a step: the loop's own count and test weigh as much as a term */
+        for (uint32_t s = 0; s < 256; s += 2) {
+            const uint64_t w0 = classes[2 * s], v0 = classes[2 * s + 2];
+            terms[s] = w0 * fx1 + ROUND16, terms[s + 1] = v0 * fx1 + ROUND16;
+            terms[512 + s] = w0 * fx, terms[512 + s + 1] = v0 * fx;
+        }
+        return;
+    }
     for (uint32_t s = 0; s < 256; s++) {
         const uint64_t w0 = classes[2 * s], w1 = classes[2 * s + 1];
         terms[s] = w0 * fx1 + ROUND16;
         terms[512 + s] = w0 * fx;
-        if (grey)
-            continue;
         terms[256 + s] = w1 * fx1 + ROUND16;
         terms[768 + s] = w1 * fx;
     }
@@ -81,9 +87,13 @@ static VF_ALWAYS_INLINE void over(uint16_t *pixels, uint16_t *next, uint32_t u, 
     const uint32_t t = VFI_ONE_Q15 - (uint32_t)(before >> 48);
     /* a lane's sum is below 2^31, so >> 15 leaves it in the low 16 bits of its lane; a channel's sum stays below
      * 2^16 (at most 1.0 and a rounding), so the four adds do not carry into each other */
-    const uint64_t add_a = (wa * t + ROUND15) >> 15;
-    const uint64_t add = grey ? (add_a & 0xFFFFu) * UINT64_C(0x100010001) + ((add_a >> 32) << 48)
-                              : (((rb * t + ROUND15) >> 15) & LANES) | (add_a & LANES) << 16;
+    uint64_t add;
+    if (grey) { /* vfi_blend_grey's sums: two 32-bit products, the colour's added to r, g and b in one word */
+        const uint32_t add_c = (t * (uint32_t)wa + 0x4000u) >> 15, add_a = (t * (uint32_t)(wa >> 32) + 0x4000u) >> 15;
+        add = add_c * 0x10001u | (uint64_t)(add_c | add_a << 16) << 32;
+    } else {
+        add = (((rb * t + ROUND15) >> 15) & LANES) | (((wa * t + ROUND15) >> 15) & LANES) << 16;
+    }
     store_pixel(px, before + add);
     if (px[3] >= VFI_OPAQUE_Q15)
         next[u] = (uint16_t)(u + 1);
@@ -92,10 +102,11 @@ static VF_ALWAYS_INLINE void over(uint16_t *pixels, uint16_t *next, uint32_t u, 
 /* One row. grey: r = g = b in every entry, and the classes' word 0 is r | a << 32: one channel for three. */
 static VF_ALWAYS_INLINE void row_body(const row_job_t *job, run_merge_t *m, bool grey)
 {
-    const slice_place_t *sl = job->front;
-    const uint32_t row = job->row, cu = (uint32_t)sl->cu, fy = job->front_fy, fy1 = 65536u - fy;
+    const uint32_t row = job->row, cu = (uint32_t)job->front->cu, fy = job->front_fy, fy1 = 65536u - fy;
     const uint64_t *terms = job->preclass_terms;
-    const uint8_t *data = job->row_data;
+    /* grey: the slice rows by pixel, from column -cu (a register and a subtraction fewer); the colour loop, short of
+     * registers already, does better with the pixel's column and the row length */
+    const uint8_t *data = job->row_data, *top = data - cu, *bottom = top + row;
     uint16_t *next = job->next, *pixels = job->pixels;
     const int alpha_word = grey ? 0 : 1;
     int32_t a, b;
@@ -104,11 +115,11 @@ static VF_ALWAYS_INLINE void row_body(const row_job_t *job, run_merge_t *m, bool
         b = b < job->clip_hi + 1 ? b : job->clip_hi + 1;
         for (uint32_t u = a < b ? vfi_next_open(next, (uint32_t)a) : (uint32_t)b; u < (uint32_t)b;
              u = vfi_next_open(next, u + 1)) {
-            const uint8_t *p = data + (u - cu);
-            const uint64_t wa = down(across(terms, p, alpha_word), across(terms, p + row, alpha_word), fy, fy1);
+            const uint8_t *p = grey ? top + u : data + (u - cu), *q = grey ? bottom + u : p + row;
+            const uint64_t wa = down(across(terms, p, alpha_word), across(terms, q, alpha_word), fy, fy1);
             if (!(wa >> 32))
                 continue; /* alpha 0, and so colour 0 (an entry's colour is at most its alpha): nothing to add */
-            over(pixels, next, u, wa, grey ? 0 : down(across(terms, p, 0), across(terms, p + row, 0), fy, fy1), grey);
+            over(pixels, next, u, wa, grey ? 0 : down(across(terms, p, 0), across(terms, q, 0), fy, fy1), grey);
         }
     }
 }

@@ -32,6 +32,8 @@ vf_status_t vfi_warp_band(const vf_renderer_t *r, const vf_image_t *image, uint3
     w.fraction_mask = (0xFFFFu >> (16 - r->params.warp_bits)) << (16 - r->params.warp_bits);
     w.format = image->format;
     w.have_bg = false;
+    /* every table entry grey, lit or not (lights are white): so is every composited pixel; read by the inner loop */
+    w.grey = VF_SPECIAL_LOOPS && r->tf_grey;
     for (int c = 0; c < 3; c++) {
         w.bg[c] = ((uint32_t)r->params.background[c] * VFI_ONE_Q15 + 65535u / 2) / 65535u;
         w.have_bg |= w.bg[c] != 0;

@@ -107,6 +107,30 @@ static VF_ALWAYS_INLINE void store_fast(unsigned char *dst, uint64_t rb, uint32_
     }
 }
 
+/* A grey pixel's colour c (its r = g = b, Q1.15, below 32768) as the format's bytes over no background: store_fast
+ * with one conversion for three channels (rgb565's r and b share one too). */
+static VF_ALWAYS_INLINE void store_grey(unsigned char *dst, uint32_t c, vf_format_t format)
+{
+    switch (format) {
+    case VF_FORMAT_RGB888: {
+        const unsigned char o = (unsigned char)((c * 255u + 0x4000u) >> 15);
+        dst[0] = o, dst[1] = o, dst[2] = o;
+        break;
+    }
+    case VF_FORMAT_RGB565: {
+        const uint32_t rb = (c * 31u + 0x4000u) >> 15, word = rb << 11 | ((c * 63u + 0x4000u) >> 15) << 5 | rb;
+        dst[0] = (unsigned char)(word & 0xFFu);
+        dst[1] = (unsigned char)(word >> 8);
+        break;
+    }
+    default: { /* VF_FORMAT_XRGB8888: bytes B, G, R, X */
+        const unsigned char o = (unsigned char)((c * 255u + 0x4000u) >> 15);
+        dst[0] = o, dst[1] = o, dst[2] = o, dst[3] = 0xFFu;
+        break;
+    }
+    }
+}
+
 /* Bilinear of the pixel words t00, t10 (right), t01 (below), t11 with Q0.16 fractions fx, fy: px, Q1.15 r, g, b, a,
  * each channel's sum rounded once. */
 static void bilinear(uint64_t t00, uint64_t t10, uint64_t t01, uint64_t t11, uint32_t fx, uint32_t fy, uint32_t px[4])
@@ -124,12 +148,13 @@ static void bilinear(uint64_t t00, uint64_t t10, uint64_t t01, uint64_t t11, uin
 }
 
 /* count pixels from dst, each with all four neighbours inside the image (u, v >= 0: the shifts are floors), the
- * first at (u, v), then a step of (du, dv) a pixel; the format and background constants, and whether the weights
- * keep all 16 fraction bits (vfi_warp_inner). */
+ * first at (u, v), then a step of (du, dv) a pixel; the format and background constants, whether the weights
+ * keep all 16 fraction bits, and whether the image is grey (every pixel's r = g = b: then the fast path sums r
+ * alone, in 32 bits, and stores it for all three) (vfi_warp_inner). */
 static VF_ALWAYS_INLINE void inner_body(const vfi_warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v,
                                         int64_t du, int64_t dv, unsigned char *dst, uint32_t count,
                                         const unsigned char *background, vf_format_t format, bool have_bg,
-                                        bool full_bits)
+                                        bool full_bits, bool grey)
 {
     const uint32_t bpp = format_bytes(format), mask = full_bits ? 0xFFFFu : w->fraction_mask;
     unsigned char bytes[4]; /* the background, a copy the stores cannot alias */
@@ -152,6 +177,13 @@ static VF_ALWAYS_INLINE void inner_body(const vfi_warp_row_t *w, const uint16_t 
              * sums without a, and the fast store. */
             const uint32_t w11 = (fx * fy + 0x8000u) >> 16;
             const uint32_t w00 = 65536u - fx - fy + w11, w10 = fx - w11, w01 = fy - w11;
+            if (grey) { /* r's sum, the others' too: four products below 2^31 in all and the rounding half */
+                store_grey(dst,
+                           ((uint32_t)(uint16_t)t00 * w00 + (uint32_t)(uint16_t)t10 * w10 +
+                            (uint32_t)(uint16_t)t01 * w01 + (uint32_t)(uint16_t)t11 * w11 + 0x8000u) >> 16,
+                           format);
+                continue;
+            }
             const uint64_t g = (t00 & LANE_G) * w00 + (t10 & LANE_G) * w10 + (t01 & LANE_G) * w01 +
                                (t11 & LANE_G) * w11 + (UINT64_C(0x8000) << 16);
             const uint64_t rb = (t00 & LANES_RB) * w00 + (t10 & LANES_RB) * w10 + (t01 & LANES_RB) * w01 +
@@ -169,11 +201,11 @@ static VF_ALWAYS_INLINE void inner_body(const vfi_warp_row_t *w, const uint16_t 
 static void inner_general(const vfi_warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v, int64_t du,
                           int64_t dv, unsigned char *dst, uint32_t count, const unsigned char *background)
 {
-    inner_body(w, img, iw, u, v, du, dv, dst, count, background, w->format, w->have_bg, false);
+    inner_body(w, img, iw, u, v, du, dv, dst, count, background, w->format, w->have_bg, false, false);
 }
 
-/* inner_body for the row's format and background: a loop for each with VF_SPECIAL_LOOPS and Q0.16 weights (the
- * default), else one that asks */
+/* inner_body for the row's format and background, and over no background whether the image is grey: a loop for
+ * each with VF_SPECIAL_LOOPS and Q0.16 weights (the default), else one that asks */
 void vfi_warp_inner(const vfi_warp_row_t *w, const uint16_t *img, int64_t iw, int64_t u, int64_t v, int64_t du,
                     int64_t dv, unsigned char *dst, uint32_t count, const unsigned char *background)
 {
@@ -183,16 +215,28 @@ void vfi_warp_inner(const vfi_warp_row_t *w, const uint16_t *img, int64_t iw, in
     }
     switch (w->format) {
     case VF_FORMAT_RGB888:
-        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, true, true)
-                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, false, true);
+        if (w->have_bg)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, true, true, false);
+        else if (w->grey)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, false, true, true);
+        else
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB888, false, true, false);
         break;
     case VF_FORMAT_RGB565:
-        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, true, true)
-                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, false, true);
+        if (w->have_bg)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, true, true, false);
+        else if (w->grey)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, false, true, true);
+        else
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_RGB565, false, true, false);
         break;
     default:
-        w->have_bg ? inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, true, true)
-                   : inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, false, true);
+        if (w->have_bg)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, true, true, false);
+        else if (w->grey)
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, false, true, true);
+        else
+            inner_body(w, img, iw, u, v, du, dv, dst, count, background, VF_FORMAT_XRGB8888, false, true, false);
         break;
     }
 }

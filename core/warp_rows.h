@@ -15,6 +15,7 @@ typedef struct vfi_warp_row {
     uint32_t fraction_mask; /* the warp's fraction bits kept (precision studies: fewer than 16) */
     uint32_t bg[3];         /* background, Q1.15 */
     bool have_bg;
+    bool grey;              /* every intermediate pixel's r = g = b (a grey transfer function: renderer.h's tf_grey) */
     vf_format_t format;
 } vfi_warp_row_t;
 

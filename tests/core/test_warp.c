@@ -8,7 +8,9 @@
  *
  * The intermediate image of a real frame is overwritten with patterns that reach every path: transparent
  * blocks and rows (the empty test and the culling), channels of 32768 and above (the clamped path), opaque and
- * faint pixels, noise; its row extents are made again from it as compositing makes them.
+ * faint pixels, noise; its row extents are made again from it as compositing makes them. Grey frames (a grey
+ * transfer function: the warp then sums one colour for three) are checked the same way, their patterns grey, and
+ * as composited every pixel's r = g = b, which the grey warp relies on.
  */
 #include <string.h>
 
@@ -78,8 +80,8 @@ static void spec_pixel(const vf_renderer_t *r, uint32_t x, uint32_t y, vf_format
 }
 
 /* One intermediate pixel of a pattern: 0 transparent, 1 faint, 2 opaque below 32768, 3 any Q1.15 (32768 too),
- * 4 any 16-bit values (beyond what compositing writes: the clamps must hold). */
-static void pattern_pixel(uint16_t *p, uint32_t kind)
+ * 4 any 16-bit values (beyond what compositing writes: the clamps must hold); grey: its g and b set to its r. */
+static void pattern_pixel(uint16_t *p, uint32_t kind, bool grey)
 {
     switch (kind) {
     case 0:
@@ -103,12 +105,14 @@ static void pattern_pixel(uint16_t *p, uint32_t kind)
             p[c] = (uint16_t)rnd(65536);
         break;
     }
+    if (grey)
+        p[1] = p[2] = p[0];
 }
 
 /* Overwrite the frame's intermediate image: style 0 leaves it as composited, 1 transparent blocks in noise, 2
  * one kind a row with empty rows between (and a single pixel now and then), 3 only the borders, 4 everything
  * empty but one pixel. Then the row extents as compositing makes them. */
-static void repaint(vf_renderer_t *r, int style)
+static void repaint(vf_renderer_t *r, int style, bool grey)
 {
     const uint32_t iw = r->factor.int_w, ih = r->factor.int_h;
     uint16_t *img = r->intermediate;
@@ -127,7 +131,7 @@ static void repaint(vf_renderer_t *r, int style)
                     kind = (u == 0 || v == 0 || u + 1 == iw || v + 1 == ih) ? 1 + rnd(4) : 0;
                 else
                     kind = (size_t)v * iw + u == one ? 4 : 0;
-                pattern_pixel(p, kind);
+                pattern_pixel(p, kind, grey);
             }
         }
     }
@@ -182,8 +186,8 @@ static void warp_matches(vf_renderer_t *r, vf_format_t format, const char *what)
 /* A random frame of a ball in noise, its image repainted in style, warped in every format, with and without a
  * background, at 16 warp bits and fewer. view_kind: 0 random, 1 multiples of 90 degrees (fractions 0: taps of
  * weight 0 on the image's last row and column), 2 a zoom so small or large that the image misses most pixels or
- * each intermediate pixel covers many. */
-static void frame_once(int style, int view_kind)
+ * each intermediate pixel covers many. grey: a grey transfer function (every point's r = g = b). */
+static void frame_once(int style, int view_kind, bool grey)
 {
     const uint32_t dims[3] = {2 + rnd(22), 2 + rnd(22), 2 + rnd(22)};
     vf_volume_t vol = {{dims[0], dims[1], dims[2]}, {65536, 65536, 65536}, VF_VOXEL_U8, vox};
@@ -192,6 +196,12 @@ static void frame_once(int style, int view_kind)
     vf_tf_point_t pts[6];
     const scene_tf_style_t tf_style = {9000, 1, 4000};
     vf_tf_t tf = scene_random_tf(pts, &tf_style, check_below, &rng_state);
+    for (uint32_t i = 0; i < tf.count; i++) {
+        if (grey)
+            pts[i].g = pts[i].b = pts[i].r;
+        else if (pts[i].g == pts[i].r && pts[i].b == pts[i].r) /* a colour somewhere, so the frame is not grey */
+            pts[i].g = (uint16_t)(pts[i].r >= 32768u ? pts[i].r - 16384u : pts[i].r + 16384u);
+    }
     vf_params_t p;
     vf_params_default(&p);
     vf_arena_t arena;
@@ -217,7 +227,16 @@ static void frame_once(int style, int view_kind)
         check_fail(__FILE__, __LINE__, "draw: %s", vf_status_text(s));
         return;
     }
-    repaint(r, style);
+    CHECK_EQ(r->tf_grey, grey);
+    if (grey) { /* what the grey warp relies on: a grey transfer function composites grey pixels */
+        for (size_t n = 0; n < (size_t)r->factor.int_w * r->factor.int_h; n++)
+            if (r->intermediate[n * 4 + 1] != r->intermediate[n * 4] ||
+                r->intermediate[n * 4 + 2] != r->intermediate[n * 4]) {
+                check_fail(__FILE__, __LINE__, "grey transfer function: intermediate pixel %zu not grey", n);
+                return;
+            }
+    }
+    repaint(r, style, grey);
     static const uint16_t backgrounds[3][3] = {{0, 0, 0}, {65535, 65535, 65535}, {1000, 40000, 65535}};
     static const uint32_t bits[3] = {16, 12, 4};
     for (int b = 0; b < 3 && !check_failed; b++)
@@ -226,32 +245,34 @@ static void frame_once(int style, int view_kind)
                 /* background and warp bits are read by the warp alone: set here, not through a new renderer */
                 memcpy(r->params.background, backgrounds[b], sizeof backgrounds[b]);
                 r->params.warp_bits = bits[k];
-                warp_matches(r, (vf_format_t)fmt, style == 0 ? "as composited" : "repainted");
+                warp_matches(r, (vf_format_t)fmt,
+                             style == 0 ? (grey ? "grey, as composited" : "as composited")
+                                        : (grey ? "grey, repainted" : "repainted"));
             }
 }
 
 static void warp_matches_definition_as_composited(void)
 {
     for (int t = 0; t < 30 && !check_failed; t++)
-        frame_once(0, t % 3);
+        frame_once(0, t % 3, t % 2 == 1);
 }
 
 static void warp_matches_definition_blocks_and_clamps(void)
 {
     for (int t = 0; t < 30 && !check_failed; t++)
-        frame_once(1, t % 3);
+        frame_once(1, t % 3, t % 2 == 1);
 }
 
 static void warp_matches_definition_empty_rows(void)
 {
     for (int t = 0; t < 30 && !check_failed; t++)
-        frame_once(2, t % 3);
+        frame_once(2, t % 3, t % 2 == 1);
 }
 
 static void warp_matches_definition_borders_and_one_pixel(void)
 {
     for (int t = 0; t < 40 && !check_failed; t++)
-        frame_once(3 + t % 2, t % 3);
+        frame_once(3 + t % 2, t % 3, t % 4 >= 2);
 }
 
 CHECK_CASES(CHECK_CASE(warp_matches_definition_as_composited), CHECK_CASE(warp_matches_definition_blocks_and_clamps),
