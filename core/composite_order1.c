@@ -140,7 +140,8 @@ static VF_ALWAYS_INLINE uint32_t span_plain_lit(const plain_row_t *pr, uint32_t 
     /* the rows, buffers and codes by pixel rather than by the back slice's column (from column -cu): one register
      * fewer in a loop short of them */
     const size_t off = pr->shade_offset, back_at = (size_t)(l.top - sh->slices) - l.cu;
-    const uint16_t *back_codes = pr->back_codes - l.cu, *lit = pr->lit;
+    /* code rows only with nearest shades (else NULL, which takes no offset) */
+    const uint16_t *back_codes = nearest ? pr->back_codes - l.cu : NULL, *lit = pr->lit;
     l.top -= l.cu, l.bottom -= l.cu, l.front_buf -= l.cu, l.back_buf -= l.cu, l.cu = 0;
     uint64_t right = 0;          /* bilinear: the last pixel's right column, the left one of the pixel after it */
     uint32_t last_c = UINT32_MAX - 1;
