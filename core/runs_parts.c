@@ -5,8 +5,9 @@
  *
  * The arena after the mark is laid out as the whole encoding leaves it: the three indices, then each axis's pairs
  * in a block. Begin allocates the indices and cuts the free space above them into one region a part, in part
- * order, and keeps each part's count of values at the free space's end. Part q (axis q / ranges, its (q % ranges)-th range of slabs) writes its rows' index entries in place,
- * counted from its own first value, and its pairs into its region. The join then walks the parts in order, adds
+ * order, and keeps each part's count of values at the free space's end. Part q (axis q / ranges, its
+ * (q % ranges)-th range of slabs) writes its rows' index entries in place, counted from its own first value, and
+ * its pairs into its region. The join then walks the parts in order, adds
  * to each part's entries the values before it on its axis and moves its pairs down to follow them. Moving down is
  * safe: the values before a part take no more room than the regions before it (each region is a multiple of the
  * arena's alignment and at least as long as its part's pairs), so a part's destination never passes its source,
